@@ -1,0 +1,97 @@
+#include "analysis/blocking.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace granchain {
+
+BinnedSums::BinnedSums(int bins, int components)
+    : bins_(bins), components_(components), data_(static_cast<std::size_t>(bins) * components, 0.0) {
+  if (bins < 1 || (bins & (bins - 1)) != 0) throw std::invalid_argument("BinnedSums: bins must be a power of two");
+}
+
+std::vector<double> BinnedSums::totals() const {
+  std::vector<double> t(components_, 0.0);
+  for (int b = 0; b < bins_; ++b)
+    for (int c = 0; c < components_; ++c) t[c] += bin(b)[c];
+  return t;
+}
+
+int power_of_two_bins(long long n, int limit) {
+  long long b = 1;
+  while (b * 2 <= n && b * 2 <= limit) b *= 2;
+  return static_cast<int>(b);
+}
+
+namespace {
+
+// Jackknife standard error over `blocks` equal blocks of the fine bins, and the lag-1
+// autocorrelation of the leave-one-out values (which equals that of the block values).
+BlockingLevel jackknife_level(const BinnedSums& sums, const std::vector<double>& total, int blocks,
+                              const Estimator& f) {
+  const int per_block = sums.bins() / blocks;
+  const int nc = sums.components();
+  std::vector<double> rest(nc);
+  std::vector<double> theta(blocks);
+  double mean = 0.0;
+  for (int b = 0; b < blocks; ++b) {
+    rest = total;
+    for (int j = b * per_block; j < (b + 1) * per_block; ++j)
+      for (int c = 0; c < nc; ++c) rest[c] -= sums.bin(j)[c];
+    theta[b] = f(rest);
+    mean += theta[b];
+  }
+  mean /= blocks;
+  double ss = 0.0, lag1 = 0.0;
+  for (int b = 0; b < blocks; ++b) {
+    ss += (theta[b] - mean) * (theta[b] - mean);
+    if (b + 1 < blocks) lag1 += (theta[b] - mean) * (theta[b + 1] - mean);
+  }
+  return {blocks, std::sqrt(ss * (blocks - 1) / blocks), ss > 0 ? lag1 / ss : 0.0};
+}
+
+}  // namespace
+
+std::vector<BlockingLevel> blocking_curve(const BinnedSums& sums, const Estimator& f, int min_blocks) {
+  const std::vector<double> total = sums.totals();
+  std::vector<BlockingLevel> curve;
+  for (int blocks = sums.bins(); blocks >= 2; blocks /= 2) {
+    if (blocks < min_blocks && !curve.empty()) break;
+    curve.push_back(jackknife_level(sums, total, blocks, f));
+    if (blocks < min_blocks) break;
+  }
+  return curve;
+}
+
+Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_blocks) {
+  Estimate est;
+  est.value = f(sums.totals());
+  if (sums.bins() < 2) {
+    est.error = std::nan("");
+    return est;
+  }
+  const std::vector<BlockingLevel> curve = blocking_curve(sums, f, min_blocks);
+  const std::size_t last = curve.size() - 1;
+  std::size_t chosen = last;
+  for (std::size_t l = 0; l < last; ++l) {
+    // Blocks must look independent: lag-1 autocorrelation within 2 standard errors of zero.
+    bool plateau = curve[l].lag1 < 2.0 / std::sqrt(double(curve[l].blocks));
+    for (std::size_t h = l + 1; plateau && h <= last; ++h) {
+      const double sigma_h = curve[h].error / std::sqrt(2.0 * (curve[h].blocks - 1));
+      if (curve[h].error > curve[l].error + 2.0 * sigma_h) {
+        plateau = false;
+        break;
+      }
+    }
+    if (plateau) {
+      chosen = l;
+      break;
+    }
+  }
+  est.error = curve[chosen].error;
+  est.blocks = curve[chosen].blocks;
+  est.converged = chosen < last && curve[last].blocks >= min_blocks;
+  return est;
+}
+
+}  // namespace granchain

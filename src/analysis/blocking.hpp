@@ -1,0 +1,63 @@
+#pragma once
+// Statistical errors of time averages from one long run, by blocking (Flyvbjerg & Petersen,
+// J. Chem. Phys. 91, 461 (1989)) with a jackknife inside each level so that non-linear
+// estimators (ratios, standard deviations) get errors too.
+//
+// The measuring window is cut into B equal fine bins (B a power of two); each bin holds the sums
+// of a few components (counts, time, sum of z, ...). Level l merges 2^l neighbouring bins into
+// n_l = B / 2^l blocks and estimates the standard error by the jackknife over those blocks.
+// Correlated data make the estimate grow with l until blocks are longer than the correlation
+// time, then it stays flat (the plateau). The selected level is the lowest one that no higher
+// level (with at least min_blocks blocks) exceeds by more than two of its own standard errors,
+// sigma_l / sqrt(2 (n_l - 1)), and whose block values have a lag-1 autocorrelation below
+// 2/sqrt(n_l) (blocks indistinguishable from independent ones). If no level below the last
+// qualifies, the plateau was not seen: the last level's error is reported, flagged as not
+// converged (the error bar is then a lower bound).
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace granchain {
+
+struct Estimate {
+  double value = 0.0;
+  double error = 0.0;      // one standard error
+  int blocks = 0;          // number of blocks at the selected level
+  bool converged = false;  // a plateau of the blocking curve was found
+};
+
+// Sums of `components` quantities in each of `bins` fine bins, row-major.
+class BinnedSums {
+ public:
+  BinnedSums(int bins, int components);
+  int bins() const { return bins_; }
+  int components() const { return components_; }
+  double* bin(int b) { return data_.data() + static_cast<std::size_t>(b) * components_; }
+  const double* bin(int b) const { return data_.data() + static_cast<std::size_t>(b) * components_; }
+  std::vector<double> totals() const;
+
+ private:
+  int bins_, components_;
+  std::vector<double> data_;
+};
+
+// Maps summed components (over any set of bins) to the estimated quantity.
+using Estimator = std::function<double(std::span<const double>)>;
+
+struct BlockingLevel {
+  int blocks;
+  double error;  // jackknife standard error with this many blocks
+  double lag1;   // lag-1 autocorrelation of the block values
+};
+
+// Blocking curve: the jackknife standard error at every level with >= min_blocks blocks.
+std::vector<BlockingLevel> blocking_curve(const BinnedSums& sums, const Estimator& f,
+                                          int min_blocks = 16);
+
+// Value on all data and its standard error from the plateau of the blocking curve.
+Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_blocks = 16);
+
+// Largest power of two <= min(limit, n), at least 1.
+int power_of_two_bins(long long n, int limit);
+
+}  // namespace granchain

@@ -1,0 +1,20 @@
+#pragma once
+// Parameter files for `granchain run --config FILE`: a flat JSON object or a flat TOML table,
+// keys named like the command-line flags (without "--"; "-" and "_" are interchangeable).
+//   JSON:  {"N": 25, "e": 0.88, "k": 1e8, "engine": "reference"}
+//   TOML:  N = 25      # comments allowed
+//          e = 0.88
+//          engine = "reference"
+// The format is taken from the extension (.json / .toml), otherwise from the first character.
+#include <map>
+#include <string>
+
+namespace granchain {
+
+// key (flag spelling) -> value text. Throws InputError naming the file and line on any problem.
+std::map<std::string, std::string> read_config_file(const std::string& path);
+
+// Flag spelling of a key: underscores become dashes.
+std::string normalize_key(std::string key);
+
+}  // namespace granchain

@@ -1,0 +1,196 @@
+#include "cli/run_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "cli/config_file.hpp"
+#include "cli/input_error.hpp"
+#include "cli/run_options.hpp"
+#include "cli/run_report.hpp"
+#include "engines/engine.hpp"
+#include "store/results_store.hpp"
+#include "store/run_json.hpp"
+
+namespace granchain {
+
+struct RunCommand::Impl {
+  std::map<std::string, std::string> flag_values;  // parameter name -> text from the command line
+  std::map<std::string, CLI::Option*> flag_options;
+  std::string config_path;
+  std::string json_path;
+  CLI::Option* json_option = nullptr;
+  bool no_db = false;
+  bool quiet = false;
+  bool progress_lines = false;
+};
+
+RunCommand::RunCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
+  sub_ = app.add_subcommand("run", "Simulate the driven column once and measure n_coll and the profiles.");
+  sub_->footer(
+      "Units: m = d = g = 1 unless set. The floor at z = 0 touches the lower edge of particle 1\n"
+      "(a floor hit is z_1 = d/2) and returns it with a speed from p(v) = (m v/kT0) exp(-m v^2/2kT0).\n"
+      "n_coll = N_coll / (N T) counts every separation of two touching particles and every floor hit\n"
+      "inside the measuring window; errors are one standard error from blocking analysis.\n"
+      "Output: a summary on the terminal, JSON with --json [FILE] (stdout without FILE), and one row\n"
+      "in the results store (--db). Exit codes: 0 ok, 2 bad input (nothing written), 3 the\n"
+      "simulation turned unphysical (nothing written), 4 the results store could not be written.");
+  auto& impl = *impl_;
+  for (const ParameterInfo& p : run_parameters()) {
+    impl.flag_options[p.name] = sub_->add_option("--" + p.name, impl.flag_values[p.name], p.help)
+                                    ->type_name(p.type)
+                                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  sub_->add_option("--config", impl.config_path,
+                   "read parameters from a JSON or TOML file (keys as the flags); flags given here override it")
+      ->type_name("FILE");
+  impl.json_option = sub_->add_option("--json", impl.json_path,
+                                      "write the result as JSON to FILE, or to standard output if no FILE is given")
+                         ->expected(0, 1)
+                         ->type_name("[FILE]");
+  sub_->add_flag("--no-db", impl.no_db, "do not append the run to the results store");
+  sub_->add_flag("--quiet,-q", impl.quiet, "print no summary and no progress");
+  sub_->add_flag("--progress", impl.progress_lines,
+                 "print a progress line every 10 s even when standard error is not a terminal");
+}
+
+namespace {
+
+class ProgressPrinter {
+ public:
+  explicit ProgressPrinter(bool tty) : tty_(tty) {}
+  void operator()(const RunProgress& p) {
+    const double frac = p.t_total > 0 ? p.t / p.t_total : 1.0;
+    const double eta = frac > 0 ? p.wall_seconds * (1.0 - frac) / frac : 0.0;
+    const std::string line = fmt::format(
+        "run: {:5.1f}% t = {:.6g}/{:.6g} ({}), {:.3g} steps/s, {:.3g} collisions/s, elapsed {:.0f} s, ETA {:.0f} s",
+        100.0 * frac, p.t, p.t_total, p.in_transient ? "transient" : "measuring",
+        p.wall_seconds > 0 ? p.steps / p.wall_seconds : 0.0, p.wall_seconds > 0 ? p.events / p.wall_seconds : 0.0,
+        p.wall_seconds, eta);
+    if (tty_) {
+      fmt::print(stderr, "\r{:<118}", line);
+      printed_ = true;
+    } else {
+      fmt::print(stderr, "{}\n", line);
+    }
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (tty_ && printed_) fmt::print(stderr, "\r{:<118}\r", "");
+  }
+
+ private:
+  bool tty_;
+  bool printed_ = false;
+};
+
+void check_output_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("--json: folder '{}' does not exist", dir.string()));
+  if (access(dir.c_str(), W_OK) != 0) throw InputError(fmt::format("--json: folder '{}' is not writable", dir.string()));
+  if (fs::is_directory(path, ec)) throw InputError(fmt::format("--json: '{}' is a folder, not a file", path));
+}
+
+// Writes the whole file or nothing: a temporary file renamed into place.
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << text;
+    f.flush();
+    if (!f) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(fmt::format("--json: cannot write '{}'", path));
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(fmt::format("--json: cannot write '{}'", path));
+  }
+}
+
+}  // namespace
+
+int RunCommand::execute() {
+  auto& impl = *impl_;
+  RunOptions opts;
+  const bool json_requested = impl.json_option->count() > 0;
+  const bool json_stdout = json_requested && impl.json_path.empty();
+  try {
+    std::map<std::string, RawValue> raw;
+    if (!impl.config_path.empty()) {
+      for (auto& [key, value] : read_config_file(impl.config_path)) {
+        if (key == "config") throw InputError(fmt::format("--config: '{}' may not name another config file", impl.config_path));
+        raw[key] = RawValue{value, fmt::format("config file '{}'", impl.config_path)};
+      }
+    }
+    for (const auto& [name, opt] : impl.flag_options)
+      if (opt->count() > 0) raw[name] = RawValue{impl.flag_values[name], ""};
+    opts = resolve_run_options(raw);
+    opts.use_db = !impl.no_db;
+    if (opts.use_db) ResultsStore::preflight(opts.db_path);
+    if (json_requested && !json_stdout) check_output_path(impl.json_path);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const bool show_progress = !impl.quiet && (tty || impl.progress_lines);
+  ProgressPrinter printer(tty);
+  RunResult result;
+  try {
+    ProgressCallback cb;
+    if (show_progress) cb = [&printer](const RunProgress& p) { printer(p); };
+    result = run_driven_column(opts.spec, cb, tty ? 0.5 : 10.0);
+    printer.finish();
+  } catch (const UnphysicalStateError& e) {
+    printer.finish();
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written\n", e.what());
+    return kExitUnphysical;
+  }
+
+  nlohmann::json j = run_result_to_json(result);
+  std::string stored;
+  if (opts.use_db) {
+    try {
+      ResultsStore store(opts.db_path);
+      const std::int64_t id = store.insert_run(result);
+      stored = fmt::format("run {} in {}", id, opts.db_path);
+      j["stored"] = {{"db", opts.db_path}, {"run_id", id}};
+    } catch (const StoreError& e) {
+      fmt::print(stderr, "granchain: error: {}; the run was not stored\n", e.what());
+      return kExitStoreFailed;
+    }
+  }
+  if (json_requested) {
+    const std::string text = j.dump(2) + "\n";
+    if (json_stdout) {
+      fmt::print("{}", text);
+    } else {
+      try {
+        write_file_atomically(impl.json_path, text);
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "granchain: error: {}\n", e.what());
+        return kExitStoreFailed;
+      }
+      if (stored.empty()) stored = "JSON in " + impl.json_path;
+      else stored += ", JSON in " + impl.json_path;
+    }
+  }
+  if (!impl.quiet && !json_stdout) fmt::print("{}", run_summary(result, stored));
+  return kExitOk;
+}
+
+}  // namespace granchain

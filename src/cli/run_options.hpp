@@ -1,0 +1,39 @@
+#pragma once
+// The parameters of `granchain run`: one table that defines the flags, the config-file keys,
+// their help texts, defaults and valid ranges, so that all three always agree.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simulation/driven_run.hpp"
+
+namespace granchain {
+
+struct RunOptions {
+  RunSpec spec;
+  std::string db_path = "granchain.db";
+  bool use_db = true;
+};
+
+struct ParameterInfo {
+  std::string name;          // flag without "--", also the config-file key
+  std::string help;          // meaning, valid range and default
+  std::string type;          // INT, REAL, NAME or PATH, for --help
+};
+
+// Every parameter that may come from a flag or a config file.
+const std::vector<ParameterInfo>& run_parameters();
+
+// A raw value and where it came from (for error messages).
+struct RawValue {
+  std::string text;
+  std::string source;  // "" for the command line, else "config file 'x'"
+};
+
+// Parses and validates raw values (unknown keys, bad numbers, out-of-range values all throw
+// InputError with one line naming the parameter and its valid range) and fills in defaults:
+// T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.
+RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw);
+
+}  // namespace granchain

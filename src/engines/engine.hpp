@@ -1,0 +1,51 @@
+#pragma once
+// One interface for every way of advancing time (the OpenMM "platform" idea). The reference
+// engine is the paper's fixed-step Runge-Kutta; every faster engine must agree with it.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "engines/events.hpp"
+#include "model/chain_state.hpp"
+
+namespace granchain {
+
+struct EngineCounters {
+  std::uint64_t steps = 0;         // integration steps (time-stepped engines) or event updates
+  std::uint64_t contact_ends = 0;  // all contact ends since the start, transient included
+  std::uint64_t floor_hits = 0;    // all floor hits since the start, transient included
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual std::string_view name() const = 0;
+  // Advances the system to exactly time t >= time(), reporting every event on the way in
+  // time order. Throws UnphysicalStateError when the state stops making physical sense.
+  virtual void advance_to(double t, EventSink& sink) = 0;
+  // State at time(); valid until the next advance_to.
+  virtual const ChainState& state() const = 0;
+  virtual double time() const = 0;
+  virtual EngineCounters counters() const = 0;
+  // Smallest natural time increment (the step of a time-stepped engine), 0 if none.
+  virtual double time_quantum() const { return 0.0; }
+};
+
+// Raised when the simulation turns unphysical (particles pass through each other, a non-finite
+// state). It names the time and the particles (1-based, as in the paper) so a run can stop with
+// an error instead of printing a number.
+class UnphysicalStateError : public std::runtime_error {
+ public:
+  UnphysicalStateError(double t, int particle_a, int particle_b, const std::string& what);
+  double time() const { return t_; }
+  int particle_a() const { return a_; }
+  int particle_b() const { return b_; }
+
+ private:
+  double t_;
+  int a_;
+  int b_;
+};
+
+}  // namespace granchain

@@ -1,0 +1,23 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engines/engine.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/floor.hpp"
+
+namespace granchain {
+
+struct EngineChoice {
+  std::string name = "reference";  // one of engine_names()
+  double dt_factor = 100.0;        // time-stepped engines: dt = tau_c / dt_factor
+};
+
+// Names accepted by make_engine, the default first.
+const std::vector<std::string>& engine_names();
+
+std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParameters& p,
+                                    const ChainState& initial, FloorDrive* floor);
+
+}  // namespace granchain

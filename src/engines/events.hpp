@@ -1,0 +1,34 @@
+#pragma once
+// What engines report while time advances. Observers count these, so a collision means the same
+// thing whichever engine ran (paper Sec. III.A: a particle-particle collision is counted when two
+// touching particles separate; each floor hit counts one).
+#include <cstdint>
+
+namespace granchain {
+
+enum class EventKind : std::uint8_t {
+  ContactBegin,  // the overlap of pair (i, i+1) becomes positive
+  ContactEnd,    // the overlap of pair (i, i+1) returns to zero: one counted collision
+  FloorHit,      // particle 1 (i = 0) reaches the floor and is sent back up
+};
+
+struct Event {
+  EventKind kind;
+  double t;      // time of the event
+  int i;         // lower particle of the pair (0-based); 0 for a floor hit
+  double speed;  // |v_i - v_{i+1}| for contacts; outgoing speed for a floor hit
+};
+
+class EventSink {
+ public:
+  virtual ~EventSink() = default;
+  virtual void on_event(const Event& event) = 0;
+};
+
+// Discards every event.
+class NullEventSink final : public EventSink {
+ public:
+  void on_event(const Event&) override {}
+};
+
+}  // namespace granchain

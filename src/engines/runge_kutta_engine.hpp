@@ -1,0 +1,46 @@
+#pragma once
+// Reference engine: the paper's second-order Runge-Kutta (midpoint) scheme with a fixed step
+// dt = tau_c / dt_factor (Sec. III.A uses dt_factor = 100).
+#include <vector>
+
+#include "engines/engine.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/floor.hpp"
+
+namespace granchain {
+
+struct RungeKuttaOptions {
+  double dt_factor = 100.0;  // dt = tau_c / dt_factor
+};
+
+class RungeKuttaEngine final : public Engine {
+ public:
+  // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
+  RungeKuttaEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
+                   RungeKuttaOptions options = {});
+
+  std::string_view name() const override { return "reference"; }
+  void advance_to(double t, EventSink& sink) override;
+  const ChainState& state() const override { return state_; }
+  double time() const override { return state_.t; }
+  EngineCounters counters() const override { return counters_; }
+  double time_quantum() const override { return dt_; }
+
+ private:
+  // a_i = -g + (f_{i,i+1} - f_{i-1,i}) / m with f from Eq. (force-0).
+  void accelerations(const double* z, const double* v, double* a) const;
+  void step(double t0, double h, EventSink& sink);
+  void check_state(double t_end) const;
+
+  int n_;
+  double d_, g_, k_over_m_, D_, dt_;
+  double floor_z_;  // centre height of particle 1 at a floor hit (d/2)
+  FloorDrive* floor_;
+  ChainState state_;
+  std::vector<double> a_, zm_, vm_, am_, z_old_;
+  std::vector<unsigned char> touching_;
+  std::vector<Event> pending_;
+  EngineCounters counters_;
+};
+
+}  // namespace granchain

@@ -1,0 +1,47 @@
+#pragma once
+// The thermal floor at z = 0 (paper Sec. II.A). Its surface touches the lower edge of particle 1,
+// i.e. a floor hit happens when the centre z_1 comes down to d/2. The hit is instantaneous: the
+// particle leaves upward with a fresh speed drawn from the floor, whatever its incoming speed.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "model/random.hpp"
+
+namespace granchain {
+
+// Source of outgoing speeds at floor hits; engines own none of the randomness.
+class FloorDrive {
+ public:
+  virtual ~FloorDrive() = default;
+  virtual double next_speed() = 0;
+};
+
+// Flux-weighted Maxwell distribution p(v) = (m v / kT0) exp(-m v^2 / (2 kT0)), v > 0
+// (the first equation of Sec. II.A), sampled by inverting its CDF 1 - exp(-m v^2 / (2 kT0)).
+class ThermalFloor final : public FloorDrive {
+ public:
+  ThermalFloor(double kT0, double m, std::uint64_t seed);
+  double next_speed() override;
+
+ private:
+  double two_kT_over_m_;
+  Rng rng_;
+};
+
+// A fixed sequence of speeds, for deterministic comparisons between engines.
+class ScriptedFloor final : public FloorDrive {
+ public:
+  explicit ScriptedFloor(std::vector<double> speeds) : speeds_(std::move(speeds)) {}
+  double next_speed() override;  // throws std::out_of_range when the script is used up
+  std::size_t used() const { return next_; }
+
+ private:
+  std::vector<double> speeds_;
+  std::size_t next_ = 0;
+};
+
+// CDF of the thermal floor's speed distribution, for tests and analysis.
+double thermal_floor_speed_cdf(double v, double kT0, double m);
+
+}  // namespace granchain

@@ -1,0 +1,41 @@
+#include "observables/collision_counter.hpp"
+
+#include <algorithm>
+
+namespace granchain {
+
+CollisionCounter::CollisionCounter(double t_begin, double t_end, int bins)
+    : t_begin_(t_begin), t_end_(t_end), bin_width_((t_end - t_begin) / bins), sums_(bins, kComponents) {
+  for (int b = 0; b < bins; ++b) sums_.bin(b)[kTime] = bin_width_;
+}
+
+void CollisionCounter::on_event(const Event& event) {
+  if (event.t < t_begin_ || event.t >= t_end_) return;
+  const int b = std::min(sums_.bins() - 1, static_cast<int>((event.t - t_begin_) / bin_width_));
+  switch (event.kind) {
+    case EventKind::ContactEnd:
+      sums_.bin(b)[kPP] += 1.0;
+      ++pp_;
+      break;
+    case EventKind::FloorHit:
+      sums_.bin(b)[kFloor] += 1.0;
+      ++floor_;
+      break;
+    case EventKind::ContactBegin:
+      break;
+  }
+}
+
+Estimate CollisionCounter::collision_rate_per_particle(int N) const {
+  return blocked_estimate(sums_, [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); });
+}
+
+Estimate CollisionCounter::floor_hit_rate() const {
+  return blocked_estimate(sums_, [](std::span<const double> s) { return s[kFloor] / s[kTime]; });
+}
+
+Estimate CollisionCounter::particle_collision_rate() const {
+  return blocked_estimate(sums_, [](std::span<const double> s) { return s[kPP] / s[kTime]; });
+}
+
+}  // namespace granchain

@@ -1,0 +1,264 @@
+#include "store/results_store.hpp"
+
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "store/run_json.hpp"
+#include "version.hpp"
+
+namespace granchain {
+
+namespace {
+
+const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+INSERT OR IGNORE INTO meta(key, value) VALUES('schema_version', '1');
+CREATE TABLE IF NOT EXISTS runs(
+  id INTEGER PRIMARY KEY,
+  created_utc TEXT NOT NULL,
+  code_version TEXT NOT NULL,
+  setup TEXT NOT NULL,
+  engine TEXT NOT NULL,
+  N INTEGER NOT NULL,
+  e REAL NOT NULL,
+  k REAL NOT NULL,
+  T0 REAL NOT NULL,
+  m REAL NOT NULL,
+  d REAL NOT NULL,
+  g REAL NOT NULL,
+  T REAL NOT NULL,
+  transient REAL NOT NULL,
+  seed INTEGER NOT NULL,
+  dt_factor REAL NOT NULL,
+  damping_D REAL NOT NULL,
+  tau_c REAL NOT NULL,
+  dt REAL NOT NULL,
+  sample_interval REAL NOT NULL,
+  samples INTEGER NOT NULL,
+  n_coll REAL NOT NULL,
+  n_coll_err REAL,
+  n_coll_blocks INTEGER NOT NULL,
+  n_coll_converged INTEGER NOT NULL,
+  floor_rate REAL NOT NULL,
+  floor_rate_err REAL,
+  pp_rate REAL NOT NULL,
+  pp_rate_err REAL,
+  particle_collisions INTEGER NOT NULL,
+  floor_hits INTEGER NOT NULL,
+  steps INTEGER NOT NULL,
+  events INTEGER NOT NULL,
+  wall_seconds REAL NOT NULL,
+  result_json TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS runs_by_point ON runs(setup, N, e, k, T0);
+CREATE TABLE IF NOT EXISTS profiles(
+  run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  i INTEGER NOT NULL,
+  z_mean REAL NOT NULL,
+  z_mean_err REAL,
+  z_std REAL NOT NULL,
+  z_std_err REAL,
+  K REAL NOT NULL,
+  K_err REAL,
+  PRIMARY KEY(run_id, i)
+);
+)sql";
+
+// Owns one prepared statement.
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr) != SQLITE_OK)
+      throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db)));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  void bind(int i, double x) { sqlite3_bind_double(stmt_, i, x); }
+  void bind(int i, std::int64_t x) { sqlite3_bind_int64(stmt_, i, x); }
+  void bind(int i, const std::string& s) { sqlite3_bind_text(stmt_, i, s.c_str(), -1, SQLITE_TRANSIENT); }
+  void run() {
+    if (sqlite3_step(stmt_) != SQLITE_DONE) throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db_)));
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+  bool row() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db_)));
+  }
+  std::int64_t column_int(int i) { return sqlite3_column_int64(stmt_, i); }
+  std::string column_text(int i) {
+    const auto* p = sqlite3_column_text(stmt_, i);
+    return p ? reinterpret_cast<const char*>(p) : "";
+  }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+std::string utc_now() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace
+
+void ResultsStore::preflight(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    if (!fs::is_regular_file(path, ec)) throw StoreError(fmt::format("--db: '{}' is not a regular file", path));
+    if (access(path.c_str(), R_OK | W_OK) != 0) throw StoreError(fmt::format("--db: '{}' is not readable and writable", path));
+    sqlite3* db = nullptr;
+    const int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+    std::string problem;
+    if (rc != SQLITE_OK) {
+      problem = "cannot be opened";
+    } else {
+      sqlite3_stmt* st = nullptr;
+      if (sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key='schema_version'", -1, &st, nullptr) != SQLITE_OK) {
+        // A database without our meta table: acceptable only if it is empty.
+        sqlite3_stmt* any = nullptr;
+        if (sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &any, nullptr) != SQLITE_OK) {
+          problem = "is not an SQLite database";
+        } else if (sqlite3_step(any) == SQLITE_ROW && sqlite3_column_int(any, 0) != 0) {
+          problem = "is an SQLite database but not a granchain results store";
+        }
+        sqlite3_finalize(any);
+      } else {
+        if (sqlite3_step(st) == SQLITE_ROW) {
+          const int v = sqlite3_column_int(st, 0);
+          if (v != kStoreSchemaVersion) problem = fmt::format("has store schema version {}, this build reads {}", v, kStoreSchemaVersion);
+        }
+        sqlite3_finalize(st);
+      }
+    }
+    sqlite3_close(db);
+    if (!problem.empty()) throw StoreError(fmt::format("--db: '{}' {}", path, problem));
+    return;
+  }
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) throw StoreError(fmt::format("--db: folder '{}' does not exist", dir.string()));
+  if (access(dir.c_str(), W_OK) != 0) throw StoreError(fmt::format("--db: folder '{}' is not writable", dir.string()));
+}
+
+ResultsStore::ResultsStore(const std::string& path) : path_(path) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+    const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw StoreError(fmt::format("--db: cannot open '{}': {}", path, msg));
+  }
+  sqlite3_busy_timeout(db_, 60000);  // concurrent writers (parallel runs) wait instead of failing
+  exec("PRAGMA foreign_keys = ON");
+  exec("BEGIN IMMEDIATE");
+  try {
+    exec(kSchema);
+    exec("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw;
+  }
+}
+
+ResultsStore::~ResultsStore() { sqlite3_close(db_); }
+
+void ResultsStore::exec(const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw StoreError(fmt::format("results store '{}': {}", path_, msg));
+  }
+}
+
+std::int64_t ResultsStore::insert_run(const RunResult& r) {
+  exec("BEGIN IMMEDIATE");
+  try {
+    Statement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
+        T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
+        n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
+        particle_collisions, floor_hits, steps, events, wall_seconds, result_json)
+        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
+    const RunSpec& s = r.spec;
+    int c = 1;
+    run.bind(c++, utc_now());
+    run.bind(c++, std::string(code_version()));
+    run.bind(c++, std::string("driven_column"));
+    run.bind(c++, s.engine.name);
+    run.bind(c++, static_cast<std::int64_t>(s.params.N));
+    run.bind(c++, s.params.e);
+    run.bind(c++, s.params.k);
+    run.bind(c++, s.params.kT0);
+    run.bind(c++, s.params.m);
+    run.bind(c++, s.params.d);
+    run.bind(c++, s.params.g);
+    run.bind(c++, s.T);
+    run.bind(c++, s.transient);
+    run.bind(c++, static_cast<std::int64_t>(s.seed));
+    run.bind(c++, s.engine.dt_factor);
+    run.bind(c++, r.law.D);
+    run.bind(c++, r.law.tau_c);
+    run.bind(c++, r.time_step);
+    run.bind(c++, r.sample_interval);
+    run.bind(c++, static_cast<std::int64_t>(r.samples));
+    run.bind(c++, r.n_coll.value);
+    run.bind(c++, r.n_coll.error);
+    run.bind(c++, static_cast<std::int64_t>(r.n_coll.blocks));
+    run.bind(c++, static_cast<std::int64_t>(r.n_coll.converged));
+    run.bind(c++, r.floor_rate.value);
+    run.bind(c++, r.floor_rate.error);
+    run.bind(c++, r.pp_rate.value);
+    run.bind(c++, r.pp_rate.error);
+    run.bind(c++, static_cast<std::int64_t>(r.particle_collisions));
+    run.bind(c++, static_cast<std::int64_t>(r.floor_hits));
+    run.bind(c++, static_cast<std::int64_t>(r.steps));
+    run.bind(c++, static_cast<std::int64_t>(r.events));
+    run.bind(c++, r.wall_seconds);
+    run.bind(c++, run_result_to_json(r).dump());
+    run.run();
+    const std::int64_t id = sqlite3_last_insert_rowid(db_);
+
+    Statement prof(db_, "INSERT INTO profiles(run_id, i, z_mean, z_mean_err, z_std, z_std_err, K, K_err) VALUES(?,?,?,?,?,?,?,?)");
+    for (std::size_t i = 0; i < r.profiles.size(); ++i) {
+      const ParticleProfile& p = r.profiles[i];
+      prof.bind(1, id);
+      prof.bind(2, static_cast<std::int64_t>(i + 1));
+      prof.bind(3, p.z_mean.value);
+      prof.bind(4, p.z_mean.error);
+      prof.bind(5, p.z_std.value);
+      prof.bind(6, p.z_std.error);
+      prof.bind(7, p.kinetic.value);
+      prof.bind(8, p.kinetic.error);
+      prof.run();
+    }
+    exec("COMMIT");
+    return id;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::int64_t ResultsStore::count_runs() {
+  Statement st(db_, "SELECT count(*) FROM runs");
+  st.row();
+  return st.column_int(0);
+}
+
+}  // namespace granchain

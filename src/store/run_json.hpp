@@ -1,0 +1,16 @@
+#pragma once
+// JSON form of a run: what `granchain run --json` prints and what the store keeps as provenance.
+#include <nlohmann/json.hpp>
+
+#include "simulation/driven_run.hpp"
+
+namespace granchain {
+
+nlohmann::json to_json(const Estimate& e);
+nlohmann::json run_spec_to_json(const RunSpec& spec);
+// Everything about a finished run: parameters, derived constants, observables with errors,
+// per-particle profiles, cost. Wall time and code version are included; the physics is not
+// affected by them.
+nlohmann::json run_result_to_json(const RunResult& r);
+
+}  // namespace granchain

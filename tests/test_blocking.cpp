@@ -1,0 +1,93 @@
+// Blocking error analysis on synthetic series with known statistics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/blocking.hpp"
+#include "model/random.hpp"
+
+using namespace granchain;
+
+namespace {
+
+// Mean of an AR(1) series x_t = phi x_{t-1} + sqrt(1 - phi^2) eta_t (unit variance), stored in
+// `bins` bins. The exact standard error of the mean of n points is, for n >> 1/(1-phi),
+// sqrt((1 + phi) / ((1 - phi) n)).
+BinnedSums ar1_bins(double phi, long n, int bins, std::uint64_t seed) {
+  Rng r(seed);
+  BinnedSums s(bins, 2);
+  double x = r.normal();
+  const double c = std::sqrt(1 - phi * phi);
+  for (long t = 0; t < n; ++t) {
+    x = phi * x + c * r.normal();
+    double* b = s.bin(static_cast<int>(t * bins / n));
+    b[0] += 1.0;
+    b[1] += x;
+  }
+  return s;
+}
+
+double mean_of(std::span<const double> s) { return s[1] / s[0]; }
+
+}  // namespace
+
+TEST(Blocking, UncorrelatedDataGiveSigmaOverRootN) {
+  const long n = 1 << 18;
+  const BinnedSums s = ar1_bins(0.0, n, 1024, 1);
+  const Estimate e = blocked_estimate(s, mean_of);
+  const double exact = 1.0 / std::sqrt(double(n));
+  // Relative noise of an SE from >= 16 blocks is <= 1/sqrt(30): allow 3 of those.
+  EXPECT_NEAR(e.error, exact, 3.0 * exact / std::sqrt(30.0));
+  EXPECT_TRUE(e.converged);
+}
+
+// Strong correlation: the naive SE is too small by sqrt((1+phi)/(1-phi)) = 9.95 for phi = 0.98;
+// blocking must recover the true SE.
+TEST(Blocking, CorrelatedDataRecoverTrueError) {
+  const double phi = 0.98;
+  const long n = 1 << 21;
+  int within = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const BinnedSums s = ar1_bins(phi, n, 1024, seed);
+    const Estimate e = blocked_estimate(s, mean_of);
+    const double exact = std::sqrt((1 + phi) / ((1 - phi) * n));
+    EXPECT_TRUE(e.converged) << "seed " << seed;
+    EXPECT_GT(e.error, 0.6 * exact) << "seed " << seed;
+    EXPECT_LT(e.error, 1.5 * exact) << "seed " << seed;
+    within += std::abs(e.value) < 2.0 * exact;
+  }
+  // The mean itself: |mean| < 2 SE for about 95% of seeds; at least 6 of 8.
+  EXPECT_GE(within, 6);
+}
+
+// If the correlation time is as long as the run, no plateau can be seen and the flag says so.
+TEST(Blocking, FlagsMissingPlateau) {
+  const BinnedSums s = ar1_bins(0.99995, 1 << 18, 1024, 3);
+  EXPECT_FALSE(blocked_estimate(s, mean_of).converged);
+}
+
+// The jackknife gives errors to non-linear estimators: the SE of a ratio of independent means
+// follows from error propagation.
+TEST(Blocking, JackknifeRatioMatchesErrorPropagation) {
+  Rng r(11);
+  const int n = 1 << 18;
+  BinnedSums s(1024, 3);
+  for (int t = 0; t < n; ++t) {
+    double* b = s.bin(t * 1024 / n);
+    b[0] += 1.0;
+    b[1] += 2.0 + 0.5 * r.normal();
+    b[2] += 4.0 + 1.0 * r.normal();
+  }
+  const Estimate e = blocked_estimate(s, [](std::span<const double> x) { return x[1] / x[2]; });
+  // var(a/b) ~ (a/b)^2 (var a / a^2 + var b / b^2) / n
+  const double exact = 0.5 * std::sqrt((0.25 / 4.0 + 1.0 / 16.0) / n);
+  EXPECT_NEAR(e.value, 0.5, 5 * exact);
+  EXPECT_NEAR(e.error, exact, 3.0 * exact / std::sqrt(30.0));
+}
+
+TEST(Blocking, PowerOfTwoBins) {
+  EXPECT_EQ(power_of_two_bins(100000, 1024), 1024);
+  EXPECT_EQ(power_of_two_bins(100, 1024), 64);
+  EXPECT_EQ(power_of_two_bins(1, 1024), 1);
+  EXPECT_THROW(BinnedSums(100, 1), std::invalid_argument);
+}

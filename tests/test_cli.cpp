@@ -1,0 +1,152 @@
+// The command line as a user meets it: bad input, outputs, config files, failures.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliResult {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("granchain_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+  }
+  CliResult run(const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && '" GRANCHAIN_BINARY "' " + args + " > stdout.txt 2> stderr.txt";
+    const int status = std::system(cmd.c_str());
+    CliResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
+    fs::remove(dir_ / "stdout.txt");
+    fs::remove(dir_ / "stderr.txt");
+    return r;
+  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  // Files the run left in its folder (besides the ones the test wrote).
+  std::size_t files() const { return std::distance(fs::directory_iterator(dir_), fs::directory_iterator()); }
+
+  fs::path dir_;
+};
+
+const std::string kQuick = "run --N 4 --k 1e4 --e 0.8 --T 20 --transient 2 ";
+
+}  // namespace
+
+TEST_F(Cli, BadInputIsOneLineExitTwoNothingWritten) {
+  write("bad.json", "{\"N\": 5, \"e\": ");
+  write("unknown.toml", "N = 5\nfoo = 3\n");
+  write("range.toml", "# comment\ne = 2.0\n");
+  write("section.toml", "[run]\nN = 5\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--e 0", "--e"},           {"--e 1.5", "--e"},           {"--e -0.2", "--e"},
+      {"--k 0", "--k"},           {"--k -3", "--k"},            {"--k nan", "--k"},
+      {"--e inf", "--e"},         {"--N 0", "--N"},             {"--N 2.5", "--N"},
+      {"--T 0", "--T"},           {"--T -1", "--T"},            {"--transient -1", "--transient"},
+      {"--T0 0", "--T0"},         {"--engine warp", "--engine"}, {"--seed -4", "--seed"},
+      {"--dt-factor 1", "--dt-factor"}, {"--bins 100", "--bins"}, {"--bogus 1", "--bogus"},
+      {"--config missing.json", "--config"}, {"--config bad.json", "--config"},
+      {"--config unknown.toml", "foo"},      {"--config range.toml", "--e"},
+      {"--config section.toml", "--config"}, {"--db nowhere/x.db", "--db"},
+      {"--json nowhere/x.json", "--json"},   {"--k 1e4x", "--k"},
+  };
+  const std::size_t before = files();
+  for (const auto& [args, name] : cases) {
+    // Nothing but the case's own flags: bad input must be refused before anything runs.
+    const CliResult r = run("run " + args + " --json out.json");
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(files(), before) << args << " wrote a file";
+  }
+  // The range is named for a value out of range.
+  EXPECT_NE(run("run --e 1.5").err.find("0 < e <= 1"), std::string::npos);
+  EXPECT_NE(run("run --config range.toml").err.find("config file"), std::string::npos);
+  // A flag given twice: the last one counts, as in most HPC tools.
+  const CliResult twice = run(kQuick + "--e 1.5 --e 0.5 --json --no-db");
+  ASSERT_EQ(twice.exit_code, 0) << twice.err;
+  EXPECT_EQ(nlohmann::json::parse(twice.out)["parameters"]["e"], 0.5);
+}
+
+TEST_F(Cli, RunWritesSummaryJsonAndOneStoreRow) {
+  const CliResult r = run(kQuick + "--json out.json --db my.db");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("n_coll"), std::string::npos);
+  EXPECT_NE(r.out.find("stored: run 1 in my.db"), std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(dir_ / "out.json"));
+  EXPECT_EQ(j["parameters"]["N"], 4);
+  EXPECT_GT(j["observables"]["n_coll"]["value"].get<double>(), 0.0);
+  EXPECT_EQ(j["profiles"].size(), 4u);
+  EXPECT_EQ(j["stored"]["run_id"], 1);
+  const std::string count = "sqlite3 '" + (dir_ / "my.db").string() + "' 'SELECT count(*) FROM runs' > n.txt";
+  ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && " + count).c_str()), 0);
+  EXPECT_EQ(slurp(dir_ / "n.txt"), "1\n");
+  // JSON to standard output, nothing else there.
+  const CliResult s = run(kQuick + "--json --no-db");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_EQ(nlohmann::json::parse(s.out)["parameters"]["e"], 0.8);
+}
+
+// Flags, a JSON file and a TOML file that say the same thing give the same run bit for bit;
+// a flag overrides the file.
+TEST_F(Cli, ConfigFilesEqualFlagsAndFlagsOverride) {
+  write("p.json", "{\"N\": 4, \"k\": 1e4, \"e\": 0.8, \"T\": 20, \"transient\": 2, \"seed\": 5}");
+  write("p.toml", "N = 4\nk = 1e4   # stiffness\ne = 0.8\nT = 20\ntransient = 2\nseed = 5\nengine = \"reference\"\n");
+  auto physics = [](const std::string& text) {
+    auto j = nlohmann::json::parse(text);
+    return j["observables"].dump() + j["profiles"].dump() + j["parameters"].dump();
+  };
+  const CliResult a = run(kQuick + "--seed 5 --json --no-db");
+  const CliResult b = run("run --config p.json --json --no-db");
+  const CliResult c = run("run --config p.toml --json --no-db");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(physics(a.out), physics(b.out));
+  EXPECT_EQ(physics(a.out), physics(c.out));
+  const CliResult d = run("run --config p.toml --e 0.5 --json --no-db");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_EQ(nlohmann::json::parse(d.out)["parameters"]["e"], 0.5);
+}
+
+// Springs too soft for the weight: the run stops with exit code 3, names time and particles,
+// prints no result and writes nothing.
+TEST_F(Cli, UnphysicalRunStopsWithoutResult) {
+  const CliResult r = run("run --N 20 --k 1 --e 0.5 --T 100 --json out.json --db my.db");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find("passed through"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("t = "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("particles"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "my.db"));
+  EXPECT_FALSE(fs::exists(dir_ / "out.json"));
+}
+
+TEST_F(Cli, HelpNamesEveryParameterAndExitsZero) {
+  const CliResult r = run("run --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag : {"--N", "--e", "--k", "--T0", "--T ", "--transient", "--seed", "--engine", "--json", "--db", "--config"})
+    EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+  EXPECT_EQ(run("").exit_code, 2);  // no subcommand
+}

@@ -1,0 +1,95 @@
+// The SQLite results store: round trip, atomic writes, and refusal of files it does not own.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "simulation/driven_run.hpp"
+#include "store/results_store.hpp"
+
+using namespace granchain;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("granchain_store_" + std::to_string(::getpid()) + "_" +
+                                        std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+RunResult small_run() {
+  RunSpec s;
+  s.params.N = 4;
+  s.params.k = 1e4;
+  s.params.e = 0.8;
+  s.T = 20;
+  s.transient = 5;
+  return run_driven_column(s);
+}
+
+double query_double(sqlite3* db, const std::string& sql) {
+  sqlite3_stmt* st = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  double x = NAN;
+  if (sqlite3_step(st) == SQLITE_ROW) x = sqlite3_column_double(st, 0);
+  sqlite3_finalize(st);
+  return x;
+}
+
+}  // namespace
+
+TEST(ResultsStore, RoundTripOfRunAndProfiles) {
+  TempDir dir;
+  const std::string path = (dir.path / "r.db").string();
+  ResultsStore::preflight(path);
+  EXPECT_FALSE(fs::exists(path));  // preflight writes nothing
+  const RunResult r = small_run();
+  ResultsStore store(path);
+  const auto id = store.insert_run(r);
+  EXPECT_EQ(store.count_runs(), 1);
+  EXPECT_EQ(query_double(store.handle(), "SELECT n_coll FROM runs WHERE id=" + std::to_string(id)), r.n_coll.value);
+  EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM profiles WHERE run_id=" + std::to_string(id)), 4.0);
+  EXPECT_EQ(query_double(store.handle(), "SELECT K FROM profiles WHERE i=3"), r.profiles[2].kinetic.value);
+  EXPECT_EQ(query_double(store.handle(), "SELECT seed FROM runs"), 1.0);
+  ResultsStore::preflight(path);  // an existing store is accepted
+}
+
+// A failure half-way through writing a run (here: the third profile row is refused) leaves
+// neither the run row nor any profile row behind.
+TEST(ResultsStore, FailedWriteLeavesNoPartialRow) {
+  TempDir dir;
+  const std::string path = (dir.path / "r.db").string();
+  ResultsStore store(path);
+  const RunResult r = small_run();
+  store.insert_run(r);
+  ASSERT_EQ(sqlite3_exec(store.handle(),
+                         "CREATE TRIGGER refuse BEFORE INSERT ON profiles WHEN NEW.i = 3 "
+                         "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  EXPECT_THROW(store.insert_run(r), StoreError);
+  EXPECT_EQ(store.count_runs(), 1);
+  EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM profiles"), 4.0);
+}
+
+TEST(ResultsStore, PreflightRefusesWhatItCannotUse) {
+  TempDir dir;
+  EXPECT_THROW(ResultsStore::preflight((dir.path / "missing" / "r.db").string()), StoreError);
+  const std::string text = (dir.path / "notes.txt").string();
+  std::ofstream(text) << "not a database, just some notes that happen to be long enough\n";
+  EXPECT_THROW(ResultsStore::preflight(text), StoreError);
+  // Another program's SQLite database is left alone.
+  const std::string other = (dir.path / "other.db").string();
+  sqlite3* db = nullptr;
+  sqlite3_open(other.c_str(), &db);
+  sqlite3_exec(db, "CREATE TABLE t(x)", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  EXPECT_THROW(ResultsStore::preflight(other), StoreError);
+  EXPECT_THROW(ResultsStore::preflight(dir.path.string()), StoreError);  // a folder
+}
