@@ -54,9 +54,9 @@ RunCommand::RunCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
                          ->expected(0, 1)
                          ->type_name("[FILE]");
   sub_->add_flag("--no-db", impl.no_db, "do not append the run to the results store");
-  sub_->add_flag("--quiet,-q", impl.quiet, "print no summary and no progress");
+  sub_->add_flag("--quiet,-q", impl.quiet, "print no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines,
-                 "print a progress line every 10 s even when standard error is not a terminal");
+                 "print progress on standard error: a line every 10 s when it is not a terminal");
 }
 
 namespace {
@@ -147,7 +147,7 @@ int RunCommand::execute() {
   }
 
   const bool tty = isatty(STDERR_FILENO) != 0;
-  const bool show_progress = !impl.quiet && (tty || impl.progress_lines);
+  const bool show_progress = impl.progress_lines || (tty && !impl.quiet);
   ProgressPrinter printer(tty);
   RunResult result;
   try {
