@@ -143,6 +143,22 @@ TEST_F(Cli, UnphysicalRunStopsWithoutResult) {
   EXPECT_FALSE(fs::exists(dir_ / "out.json"));
 }
 
+// A run killed at an arbitrary moment (here kill -9 after 1 s of a 100-s run) leaves no row and
+// no JSON: both are written only once the run has finished, the row in one transaction.
+TEST_F(Cli, KilledRunLeavesNothingBehind) {
+  const CliResult first = run(kQuick + "--db my.db");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::string cmd = "cd '" + dir_.string() + "' && { '" GRANCHAIN_BINARY
+                          "' run --N 25 --k 1e6 --e 0.5 --T 1e4 --db my.db --json out.json --quiet & pid=$!; "
+                          "sleep 1; kill -9 $pid; wait $pid; }";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 128 + 9);
+  const std::string count = "sqlite3 '" + (dir_ / "my.db").string() + "' 'SELECT count(*) FROM runs' > n.txt";
+  ASSERT_EQ(std::system(("cd '" + dir_.string() + "' && " + count).c_str()), 0);
+  EXPECT_EQ(slurp(dir_ / "n.txt"), "1\n");
+  EXPECT_FALSE(fs::exists(dir_ / "out.json"));
+}
+
 TEST_F(Cli, HelpNamesEveryParameterAndExitsZero) {
   const CliResult r = run("run --help");
   EXPECT_EQ(r.exit_code, 0);

@@ -25,6 +25,22 @@ RunSpec spec_for(int N, double e, double k, double T, std::uint64_t seed) {
   return s;
 }
 
+// Every profile and the collision rates of a run against the exact e = 1 equilibrium, within 4
+// standard errors.
+void expect_gibbs_equilibrium(const RunResult& r, const ElasticColumnEquilibrium& eq) {
+  for (int i = 0; i < r.spec.params.N; ++i) {
+    const ParticleProfile& q = r.profiles[i];
+    EXPECT_LT(z_score(q.z_mean.value, q.z_mean.error, eq.z_mean[i]), 4.0) << "particle " << i + 1;
+    EXPECT_LT(z_score(q.z_std.value, q.z_std.error, eq.z_std[i]), 4.0) << "particle " << i + 1;
+    EXPECT_LT(z_score(q.kinetic.value, q.kinetic.error, eq.kinetic), 4.0) << "particle " << i + 1;
+  }
+  EXPECT_LT(z_score(r.floor_rate.value, r.floor_rate.error, eq.floor_rate), 4.0);
+  double pair_rate = 0;
+  for (double x : eq.contact_end_rate) pair_rate += x;
+  EXPECT_LT(z_score(r.pp_rate.value, r.pp_rate.error, pair_rate), 4.0);
+  EXPECT_LT(z_score(r.n_coll.value, r.n_coll.error, eq.n_coll), 4.0);
+}
+
 }  // namespace
 
 // One particle on the thermal floor is in equilibrium at kT0 (the floor is a heat bath): the
@@ -87,17 +103,7 @@ TEST(DrivenColumn, ElasticColumnIsInGibbsEquilibrium) {
   const RunSpec s = spec_for(3, 1.0, 1e4, 2e4, 7);
   const RunResult r = run_driven_column(s);
   const ElasticColumnEquilibrium eq = elastic_column_equilibrium(s.params);
-  for (int i = 0; i < s.params.N; ++i) {
-    const ParticleProfile& q = r.profiles[i];
-    EXPECT_LT(z_score(q.z_mean.value, q.z_mean.error, eq.z_mean[i]), 4.0) << "particle " << i + 1;
-    EXPECT_LT(z_score(q.z_std.value, q.z_std.error, eq.z_std[i]), 4.0) << "particle " << i + 1;
-    EXPECT_LT(z_score(q.kinetic.value, q.kinetic.error, eq.kinetic), 4.0) << "particle " << i + 1;
-  }
-  EXPECT_LT(z_score(r.floor_rate.value, r.floor_rate.error, eq.floor_rate), 4.0);
-  double pair_rate = 0;
-  for (double x : eq.contact_end_rate) pair_rate += x;
-  EXPECT_LT(z_score(r.pp_rate.value, r.pp_rate.error, pair_rate), 4.0);
-  EXPECT_LT(z_score(r.n_coll.value, r.n_coll.error, eq.n_coll), 4.0);
+  expect_gibbs_equilibrium(r, eq);
   // The errors are small enough for this to be a sharp test: 2% on n_coll or better.
   EXPECT_LT(r.n_coll.error, 0.02 * eq.n_coll);
 }
@@ -138,14 +144,6 @@ TEST(LongDrivenColumn, ElasticTenParticleColumnIsInGibbsEquilibrium) {
   RunSpec s = spec_for(10, 1.0, 1e5, 2e4, 17);
   s.transient = 1000.0;
   const RunResult r = run_driven_column(s);
-  const ElasticColumnEquilibrium eq = elastic_column_equilibrium(s.params);
-  for (int i = 0; i < s.params.N; ++i) {
-    const ParticleProfile& q = r.profiles[i];
-    EXPECT_LT(z_score(q.z_mean.value, q.z_mean.error, eq.z_mean[i]), 4.0) << "particle " << i + 1;
-    EXPECT_LT(z_score(q.z_std.value, q.z_std.error, eq.z_std[i]), 4.0) << "particle " << i + 1;
-    EXPECT_LT(z_score(q.kinetic.value, q.kinetic.error, eq.kinetic), 4.0) << "particle " << i + 1;
-  }
-  EXPECT_LT(z_score(r.floor_rate.value, r.floor_rate.error, eq.floor_rate), 4.0);
-  EXPECT_LT(z_score(r.n_coll.value, r.n_coll.error, eq.n_coll), 4.0);
+  expect_gibbs_equilibrium(r, elastic_column_equilibrium(s.params));
   EXPECT_TRUE(r.n_coll.converged);
 }

@@ -37,6 +37,12 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   if (!r.n_coll.converged)
     out += "  warning: the blocking analysis of n_coll found no plateau; T may be short compared with the\n"
            "           correlation time, so its error bar may be too small\n";
+  int unconverged = 0;
+  for (const ParticleProfile& q : r.profiles)
+    unconverged += !q.z_mean.converged + !q.z_std.converged + !q.kinetic.converged;
+  if (unconverged > 0)
+    out += fmt::format("  warning: {} of {} profile error bars found no blocking plateau (lower bounds; run longer)\n",
+                       unconverged, 3 * r.profiles.size());
   out += "\n     i        <z_i>              sigma_i            K_i\n";
   for (std::size_t i = 0; i < r.profiles.size(); ++i) {
     const ParticleProfile& q = r.profiles[i];
