@@ -43,10 +43,10 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   if (unconverged > 0)
     out += fmt::format("  warning: {} of {} profile error bars found no blocking plateau (lower bounds; run longer)\n",
                        unconverged, 3 * r.profiles.size());
-  out += "\n     i        <z_i>              sigma_i            K_i\n";
+  out += "\n     i  <z_i>                 sigma_i               K_i\n";
   for (std::size_t i = 0; i < r.profiles.size(); ++i) {
     const ParticleProfile& q = r.profiles[i];
-    out += fmt::format("  {:4d}  {:<18} {:<18} {:<18}\n", i + 1, format_estimate(q.z_mean), format_estimate(q.z_std),
+    out += fmt::format("  {:4d}  {:<21} {:<21} {:<21}\n", i + 1, format_estimate(q.z_mean), format_estimate(q.z_std),
                        format_estimate(q.kinetic));
   }
   out += "\n";
