@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -89,16 +88,6 @@ class ProgressPrinter {
   bool printed_ = false;
 };
 
-void check_output_path(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::path dir = fs::path(path).parent_path();
-  if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("--json: folder '{}' does not exist", dir.string()));
-  if (access(dir.c_str(), W_OK) != 0) throw InputError(fmt::format("--json: folder '{}' is not writable", dir.string()));
-  if (fs::is_directory(path, ec)) throw InputError(fmt::format("--json: '{}' is a folder, not a file", path));
-}
-
 // Writes the whole file or nothing: a temporary file renamed into place.
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp" + std::to_string(::getpid());
@@ -137,7 +126,10 @@ int RunCommand::execute() {
     opts = resolve_run_options(raw);
     opts.use_db = !impl.no_db;
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
-    if (json_requested && !json_stdout) check_output_path(impl.json_path);
+    if (json_requested && !json_stdout) {
+      const std::string reason = cannot_create_file_reason(impl.json_path);
+      if (!reason.empty()) throw InputError("--json: " + reason);
+    }
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;

@@ -11,8 +11,8 @@ enum ExitCode : int {
   kExitStoreFailed = 4,  // the results store could not be written; the run is not stored
 };
 
-// Registers `granchain run` on the app; the callback runs after a successful parse.
-// Returns a function that executes the parsed command and yields the exit code.
+// `granchain run`: registers its flags on the app; after app.parse(), execute() runs it and
+// returns the exit code.
 class RunCommand {
  public:
   explicit RunCommand(CLI::App& app);

@@ -115,10 +115,21 @@ std::string utc_now() {
 
 }  // namespace
 
+std::string cannot_create_file_reason(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return fmt::format("'{}' is a folder, not a file", path);
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::is_directory(dir, ec)) return fmt::format("folder '{}' does not exist", dir.string());
+  if (access(dir.c_str(), W_OK) != 0) return fmt::format("folder '{}' is not writable", dir.string());
+  return "";
+}
+
 void ResultsStore::preflight(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::exists(path, ec)) {
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
     if (!fs::is_regular_file(path, ec)) throw StoreError(fmt::format("--db: '{}' is not a regular file", path));
     if (access(path.c_str(), R_OK | W_OK) != 0) throw StoreError(fmt::format("--db: '{}' is not readable and writable", path));
     sqlite3* db = nullptr;
@@ -149,10 +160,8 @@ void ResultsStore::preflight(const std::string& path) {
     if (!problem.empty()) throw StoreError(fmt::format("--db: '{}' {}", path, problem));
     return;
   }
-  fs::path dir = fs::path(path).parent_path();
-  if (dir.empty()) dir = ".";
-  if (!fs::is_directory(dir, ec)) throw StoreError(fmt::format("--db: folder '{}' does not exist", dir.string()));
-  if (access(dir.c_str(), W_OK) != 0) throw StoreError(fmt::format("--db: folder '{}' is not writable", dir.string()));
+  const std::string reason = cannot_create_file_reason(path);
+  if (!reason.empty()) throw StoreError("--db: " + reason);
 }
 
 ResultsStore::ResultsStore(const std::string& path) : path_(path) {

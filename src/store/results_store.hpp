@@ -19,6 +19,10 @@ class StoreError : public std::runtime_error {
 
 inline constexpr int kStoreSchemaVersion = 1;
 
+// Why a new file could not be created at `path` ("" if it can): its folder must exist and be
+// writable, and the path must not be a folder.
+std::string cannot_create_file_reason(const std::string& path);
+
 class ResultsStore {
  public:
   // Checks, without creating or changing anything, that `path` can hold a store: an existing
