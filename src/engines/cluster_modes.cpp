@@ -6,7 +6,7 @@
 namespace granchain {
 
 DampedMode::DampedMode(double beta, double omega0_squared, double y0, double v0)
-    : beta_(beta), y0_(y0), v0_(v0) {
+    : beta_(beta), omega0_sq_(omega0_squared), y0_(y0), v0_(v0) {
   const double disc = omega0_squared - beta * beta;
   // Within round-off of critical damping, use the critical form (its limit from both sides).
   const double tol = 1e-12 * omega0_squared;
@@ -22,29 +22,28 @@ DampedMode::DampedMode(double beta, double omega0_squared, double y0, double v0)
   }
 }
 
-// y(t) = e^{-beta t} [ y0 C(t) + (v0 + beta y0) S(t) ] with C = cos, cosh or 1 and
-// S = sin(w t)/w, sinh(w t)/w or t for under-, over- and critical damping.
-double DampedMode::value(double t) const {
-  const double decay = std::exp(-beta_ * t);
-  double C, S;
+// C = cos, cosh or 1 and S = sin(w t)/w, sinh(w t)/w or t for under-, over- and critical
+// damping: the two solutions of the undamped-frame equation, C(0) = 1, S(0) = 0, S'(0) = 1.
+void DampedMode::basis(double t, double& C, double& S) const {
   switch (kind_) {
     case Kind::Under: C = std::cos(w_ * t); S = std::sin(w_ * t) / w_; break;
     case Kind::Over: C = std::cosh(w_ * t); S = std::sinh(w_ * t) / w_; break;
-    default: C = 1.0; S = t; break;
+    case Kind::Critical: C = 1.0; S = t; break;
   }
-  return decay * (y0_ * C + (v0_ + beta_ * y0_) * S);
 }
 
-// y'(t) = e^{-beta t} [ v0 C(t) - (beta v0 + omega0^2 y0) S(t) ], omega0^2 = beta^2 +- w^2.
+// y(t) = e^{-beta t} [ y0 C(t) + (v0 + beta y0) S(t) ]
+double DampedMode::value(double t) const {
+  double C, S;
+  basis(t, C, S);
+  return std::exp(-beta_ * t) * (y0_ * C + (v0_ + beta_ * y0_) * S);
+}
+
+// y'(t) = e^{-beta t} [ v0 C(t) - (beta v0 + omega0^2 y0) S(t) ]
 double DampedMode::rate(double t) const {
-  const double decay = std::exp(-beta_ * t);
-  double C, S, omega0_sq;
-  switch (kind_) {
-    case Kind::Under: C = std::cos(w_ * t); S = std::sin(w_ * t) / w_; omega0_sq = beta_ * beta_ + w_ * w_; break;
-    case Kind::Over: C = std::cosh(w_ * t); S = std::sinh(w_ * t) / w_; omega0_sq = beta_ * beta_ - w_ * w_; break;
-    default: C = 1.0; S = t; omega0_sq = beta_ * beta_; break;
-  }
-  return decay * (v0_ * C - (beta_ * v0_ + omega0_sq * y0_) * S);
+  double C, S;
+  basis(t, C, S);
+  return std::exp(-beta_ * t) * (v0_ * C - (beta_ * v0_ + omega0_sq_ * y0_) * S);
 }
 
 ClusterMotion::ClusterMotion(const std::vector<double>& z, const std::vector<double>& v, double d,
@@ -55,12 +54,12 @@ ClusterMotion::ClusterMotion(const std::vector<double>& z, const std::vector<dou
     v_com_ += v[i] / n_;
   }
   const int M = n_ - 1;
-  lambda_.resize(M);
+  std::vector<double> lambda(M);
   S_.assign(M, std::vector<double>(M));
   const double norm = std::sqrt(2.0 / n_);
   for (int j = 0; j < M; ++j) {
     const double s = std::sin((j + 1) * std::numbers::pi / (2.0 * n_));
-    lambda_[j] = 4.0 * s * s;
+    lambda[j] = 4.0 * s * s;
     for (int i = 0; i < M; ++i) S_[i][j] = norm * std::sin((i + 1) * (j + 1) * std::numbers::pi / n_);
   }
   for (int j = 0; j < M; ++j) {
@@ -69,7 +68,7 @@ ClusterMotion::ClusterMotion(const std::vector<double>& z, const std::vector<dou
       y0 += S_[i][j] * (d - (z[i + 1] - z[i]));
       y1 += S_[i][j] * (v[i] - v[i + 1]);
     }
-    modes_.emplace_back(0.5 * D * lambda_[j], k_over_m * lambda_[j], y0, y1);
+    modes_.emplace_back(0.5 * D * lambda[j], k_over_m * lambda[j], y0, y1);
   }
 }
 

@@ -19,8 +19,9 @@ class DampedMode {
   double rate(double t) const;  // dy/dt
 
  private:
+  void basis(double t, double& C, double& S) const;
   enum class Kind { Under, Critical, Over } kind_;
-  double beta_, w_;   // w = sqrt(|omega0^2 - beta^2|)
+  double beta_, omega0_sq_, w_;  // w = sqrt(|omega0^2 - beta^2|)
   double y0_, v0_;
 };
 
@@ -36,7 +37,6 @@ class ClusterMotion {
   int n_;
   double d_, g_;
   double z_com_, v_com_;
-  std::vector<double> lambda_;
   std::vector<std::vector<double>> S_;  // S_[i][j], i, j = 0..n-2
   std::vector<DampedMode> modes_;
 };
