@@ -112,7 +112,7 @@ TEST_F(Cli, RunWritesSummaryJsonAndOneStoreRow) {
 // a flag overrides the file.
 TEST_F(Cli, ConfigFilesEqualFlagsAndFlagsOverride) {
   write("p.json", "{\"N\": 4, \"k\": 1e4, \"e\": 0.8, \"T\": 20, \"transient\": 2, \"seed\": 5}");
-  write("p.toml", "N = 4\nk = 1e4   # stiffness\ne = 0.8\nT = 20\ntransient = 2\nseed = 5\nengine = \"reference\"\n");
+  write("p.toml", "N = 4\nk = 1e4   # stiffness\ne = 0.8\nT = 20\ntransient = 2\nseed = 5\nengine = \"exact\"\n");
   auto physics = [](const std::string& text) {
     auto j = nlohmann::json::parse(text);
     return j["observables"].dump() + j["profiles"].dump() + j["parameters"].dump();

@@ -1,28 +1,72 @@
 #pragma once
 // Closed-form motion of a cluster of n consecutive particles that all touch their neighbours
-// (building block of the exact event-driven engine, issue 3). With every contact of the cluster
-// closed, the n-1 overlaps x_i = d - (z_{i+1} - z_i) obey (from Eq. force-0)
+// (building block of the exact event-driven engine). With every contact of the cluster closed,
+// the n-1 overlaps x_i = d - (z_{i+1} - z_i) obey (from Eq. force-0)
 //     x'' = -(k/m) L x - D L x',   L = tridiag(-1, 2, -1),
 // and gravity moves only the centre of mass. L = S diag(lambda) S^T with the sine vectors
 // S_ij = sqrt(2/n) sin(i j pi / n) and lambda_j = 4 sin^2(j pi / (2n)), j = 1..n-1, so each mode
 // y_j = (S^T x)_j is an independent damped oscillator y'' + D lambda_j y' + (k/m) lambda_j y = 0:
 // underdamped for D^2 lambda_j < 4 k/m, overdamped above (only for e < exp(-pi)).
+#include <memory>
 #include <vector>
 
 namespace granchain {
 
+enum class ModeKind : unsigned char { Under, Critical, Over };
+
+// One damped oscillator y'' + 2 beta y' + omega0^2 y = 0 and the bounds the root finder needs.
+// Its energy E = y'^2 + omega0^2 y^2 never grows (dE/dt = -4 beta y'^2), so for all later times
+//   |y''| <= b2 sqrt(E),  b2 = 2 beta + omega0,   |y'''| <= b3 sqrt(E),  b3 = 2 beta b2 + omega0^2.
+struct ModeConstants {
+  ModeConstants() = default;
+  ModeConstants(double beta, double omega0_squared);
+  double beta = 0, omega0_sq = 0, w = 0;  // w = sqrt(|omega0^2 - beta^2|)
+  double b2 = 0, b3 = 0;
+  ModeKind kind = ModeKind::Under;
+
+  // y(t), y'(t) from y(0) = y0, y'(0) = v0, exactly.
+  void evolve(double y0, double v0, double t, double& y, double& yd) const;
+  double acceleration(double y, double yd) const { return -2.0 * beta * yd - omega0_sq * y; }
+};
+
 // y'' + 2 beta y' + omega0^2 y = 0 solved exactly from y(0), y'(0).
 class DampedMode {
  public:
-  DampedMode(double beta, double omega0_squared, double y0, double v0);
+  DampedMode(double beta, double omega0_squared, double y0, double v0)
+      : c_(beta, omega0_squared), y0_(y0), v0_(v0) {}
   double value(double t) const;
   double rate(double t) const;  // dy/dt
 
  private:
-  void basis(double t, double& C, double& S) const;
-  enum class Kind { Under, Critical, Over } kind_;
-  double beta_, omega0_sq_, w_;  // w = sqrt(|omega0^2 - beta^2|)
+  ModeConstants c_;
   double y0_, v0_;
+};
+
+// Everything about the modes of an n-particle cluster that depends only on n, k/m and D.
+struct ClusterModeTable {
+  ClusterModeTable(int n, double k_over_m, double D);
+  int n;                             // particles
+  int M;                             // modes = contacts = n - 1
+  std::vector<double> S;             // S[i * M + j]: overlap i in mode j (orthogonal, symmetric)
+  std::vector<ModeConstants> modes;  // mode j
+  std::vector<double> bottom, top;   // z_1 - z_com and z_n - z_com per unit y_j (constant part aside)
+  double s_max = 0;                  // sqrt(2/n) >= |S_ij|
+  double omega_max = 0;              // largest omega0_j
+
+  // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x).
+  void to_overlaps(const double* y, double* x) const;
+  void to_modes(const double* x, double* y) const;
+};
+
+// Tables for every cluster size up to N, built on first use.
+class ClusterModeTables {
+ public:
+  ClusterModeTables(int N, double k_over_m, double D);
+  const ClusterModeTable& operator[](int n) const;
+
+ private:
+  double k_over_m_, D_;
+  mutable std::vector<std::unique_ptr<ClusterModeTable>> tables_;
 };
 
 class ClusterMotion {
@@ -34,11 +78,10 @@ class ClusterMotion {
   void state_at(double t, std::vector<double>& z, std::vector<double>& v) const;
 
  private:
-  int n_;
+  ClusterModeTable table_;
   double d_, g_;
   double z_com_, v_com_;
-  std::vector<std::vector<double>> S_;  // S_[i][j], i, j = 0..n-2
-  std::vector<DampedMode> modes_;
+  std::vector<double> y0_, v0_;  // mode amplitudes and rates at t = 0
 };
 
 }  // namespace granchain

@@ -2,20 +2,23 @@
 
 #include <stdexcept>
 
+#include "engines/exact_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 
 namespace granchain {
 
 const std::vector<std::string>& engine_names() {
-  static const std::vector<std::string> names{"reference"};
+  static const std::vector<std::string> names{"exact", "reference", "reference-located"};
   return names;
 }
 
 std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParameters& p,
                                     const ChainState& initial, FloorDrive* floor) {
-  if (choice.name == "reference") {
-    return std::make_unique<RungeKuttaEngine>(p, initial, floor, RungeKuttaOptions{choice.dt_factor});
+  if (choice.name == "reference" || choice.name == "reference-located") {
+    return std::make_unique<RungeKuttaEngine>(p, initial, floor,
+                                              RungeKuttaOptions{choice.dt_factor, choice.name != "reference"});
   }
+  if (choice.name == "exact") return std::make_unique<ExactEngine>(p, initial, floor);
   throw std::invalid_argument("unknown engine '" + choice.name + "'");
 }
 

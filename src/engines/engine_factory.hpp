@@ -10,7 +10,7 @@
 namespace granchain {
 
 struct EngineChoice {
-  std::string name = "reference";  // one of engine_names()
+  std::string name = "exact";  // one of engine_names(); the first is the default
   double dt_factor = 100.0;        // time-stepped engines: dt = tau_c / dt_factor
 };
 

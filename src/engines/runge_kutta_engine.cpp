@@ -18,11 +18,14 @@ RungeKuttaEngine::RungeKuttaEngine(const ChainParameters& p, const ChainState& i
       floor_z_(0.5 * p.d),
       floor_(floor),
       state_(initial),
+      locate_(options.locate_switches),
       a_(p.N),
       zm_(p.N),
       vm_(p.N),
       am_(p.N),
       z_old_(p.N),
+      z_save_(p.N),
+      v_save_(p.N),
       touching_(p.N > 1 ? p.N - 1 : 0, 0) {
   const ContactLaw law = contact_law(p);
   k_over_m_ = law.k_over_m;
@@ -63,7 +66,7 @@ void RungeKuttaEngine::check_state(double t) const {
   }
 }
 
-void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
+void RungeKuttaEngine::integrate(double h) {
   double* z = state_.z.data();
   double* v = state_.v.data();
   // Midpoint rule: y(t+h) = y + h f(y + h/2 f(y)).
@@ -74,27 +77,80 @@ void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
     vm_[i] = v[i] + 0.5 * h * a_[i];
   }
   accelerations(zm_.data(), vm_.data(), am_.data());
-  double sum = 0.0;
   for (int i = 0; i < n_; ++i) {
     z[i] += h * vm_[i];
     v[i] += h * am_[i];
-    sum += z[i] + v[i];
   }
   ++counters_.steps;
+}
+
+bool RungeKuttaEngine::switches() const {
+  const double* z = state_.z.data();
+  if (floor_ != nullptr && z[0] < floor_z_) return true;
+  for (int i = 0; i + 1 < n_; ++i) {
+    if ((d_ - (z[i + 1] - z[i]) > 0.0) != static_cast<bool>(touching_[i])) return true;
+  }
+  return false;
+}
+
+void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
+  if (!locate_) {
+    integrate(h);
+    report_switches(t0, h, sink);
+    return;
+  }
+  // Cut the step at the first switch: bisect on the size s of a step from the saved state for
+  // the smallest s after which a contact has switched or particle 1 is below the floor.
+  double done = 0.0;
+  while (done < h) {
+    const double rest = h - done;
+    z_save_ = state_.z;
+    v_save_ = state_.v;
+    integrate(rest);
+    if (!switches()) {
+      report_switches(t0 + done, rest, sink);
+      return;
+    }
+    double lo = 0.0, hi = rest;
+    while (hi - lo > 1e-15 * hi) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      state_.z = z_save_;
+      state_.v = v_save_;
+      integrate(mid);
+      (switches() ? hi : lo) = mid;
+    }
+    state_.z = z_save_;
+    state_.v = v_save_;
+    integrate(hi);
+    report_switches(t0 + done, hi, sink);
+    done += hi;
+  }
+}
+
+// Reports what switched during the step of size h that began at t0 (z_old_ holds the positions
+// before it) and applies the floor.
+void RungeKuttaEngine::report_switches(double t0, double h, EventSink& sink) {
+  double* z = state_.z.data();
+  double* v = state_.v.data();
   pending_.clear();
 
   // Thermal floor: particle 1 crossing z = d/2 is sent back up with a fresh floor speed. The hit
-  // time is interpolated linearly inside the step, and the particle flies freely for the rest.
+  // time is interpolated linearly inside the step, and the particle flies freely (under gravity)
+  // for the rest of it.
   if (floor_ != nullptr && z[0] < floor_z_) {
     const double zo = z_old_[0];
     const double frac = zo > floor_z_ ? std::clamp((zo - floor_z_) / (zo - z[0]), 0.0, 1.0) : 0.0;
     const double speed = floor_->next_speed();
-    v[0] = speed;
-    z[0] = floor_z_ + speed * (1.0 - frac) * h;
+    const double r = (1.0 - frac) * h;
+    v[0] = speed - g_ * r;
+    z[0] = floor_z_ + speed * r - 0.5 * g_ * r * r;
     pending_.push_back({EventKind::FloorHit, t0 + frac * h, 0, speed});
     ++counters_.floor_hits;
   }
 
+  double sum = 0.0;
+  for (int i = 0; i < n_; ++i) sum += z[i] + v[i];
   bool bad = !std::isfinite(sum);
   for (int i = 0; i + 1 < n_; ++i) {
     const double x = d_ - (z[i + 1] - z[i]);

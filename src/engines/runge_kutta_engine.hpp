@@ -11,6 +11,11 @@ namespace granchain {
 
 struct RungeKuttaOptions {
   double dt_factor = 100.0;  // dt = tau_c / dt_factor
+  // false: the paper's scheme; a contact that opens or closes inside a step switches its force
+  // at a step boundary, a first-order error in dt (largest at small e, where the dashpot force
+  // jumps most). true: such a step is cut, by bisection to round-off, at the instant the first
+  // contact switches or particle 1 reaches the floor, so the scheme stays second order.
+  bool locate_switches = false;
 };
 
 class RungeKuttaEngine final : public Engine {
@@ -19,7 +24,7 @@ class RungeKuttaEngine final : public Engine {
   RungeKuttaEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
                    RungeKuttaOptions options = {});
 
-  std::string_view name() const override { return "reference"; }
+  std::string_view name() const override { return locate_ ? "reference-located" : "reference"; }
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override { return state_; }
   double time() const override { return state_.t; }
@@ -30,6 +35,9 @@ class RungeKuttaEngine final : public Engine {
   // a_i = -g + (f_{i,i+1} - f_{i-1,i}) / m with f from Eq. (force-0).
   void accelerations(const double* z, const double* v, double* a) const;
   void step(double t0, double h, EventSink& sink);
+  void integrate(double h);                      // one midpoint step of size h from the state
+  bool switches() const;  // has the contact set changed, or particle 1 gone below the floor?
+  void report_switches(double t0, double h, EventSink& sink);  // events of the step just taken
   void check_state(double t_end) const;
 
   int n_;
@@ -37,7 +45,8 @@ class RungeKuttaEngine final : public Engine {
   double floor_z_;  // centre height of particle 1 at a floor hit (d/2)
   FloorDrive* floor_;
   ChainState state_;
-  std::vector<double> a_, zm_, vm_, am_, z_old_;
+  bool locate_;
+  std::vector<double> a_, zm_, vm_, am_, z_old_, z_save_, v_save_;
   std::vector<unsigned char> touching_;
   std::vector<Event> pending_;
   EngineCounters counters_;

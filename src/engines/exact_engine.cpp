@@ -1,0 +1,723 @@
+#include "engines/exact_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace granchain {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
+// last proven-safe time, where the search starts again (no physics happens at a refresh).
+constexpr int kMaxIterations = 400;
+// Events allowed at one and the same instant before the engine declares itself stuck.
+constexpr std::uint64_t kMaxSameTimeEvents = 1000000;
+
+// First positive root of f + f1 h + a h^2 with a <= 0 and f >= 0 (+inf if there is none): the
+// longest step over which a quadratic lower bound of the watched function stays positive.
+double quadratic_step(double f, double f1, double a) {
+  if (f < 0) f = 0;
+  if (a >= 0) return f1 < 0 ? f / -f1 : kInf;
+  const double disc = std::sqrt(f1 * f1 - 4.0 * a * f);  // >= |f1|
+  return f1 >= 0 ? (f1 + disc) / (-2.0 * a) : 2.0 * f / (disc - f1);
+}
+
+// Is the cubic c(h) = f + f1 h + f2 h^2/2 - m3 h^3/6 positive on (0, H]? (c(0) = f > 0.)
+bool cubic_positive(double f, double f1, double f2, double m3, double H) {
+  auto c = [&](double h) { return f + h * (f1 + h * (0.5 * f2 - m3 * h / 6.0)); };
+  if (!(c(H) > 0)) return false;
+  // Interior minima sit at roots of c'(h) = f1 + f2 h - m3 h^2 / 2.
+  if (m3 > 0) {
+    const double disc = f2 * f2 + 2.0 * m3 * f1;
+    if (disc >= 0) {
+      const double r = std::sqrt(disc);
+      for (double h : {(f2 - r) / m3, (f2 + r) / m3}) {
+        if (h > 0 && h < H && !(c(h) > 0)) return false;
+      }
+    }
+  } else if (f2 != 0) {
+    const double h = -f1 / f2;
+    if (h > 0 && h < H && !(c(h) > 0)) return false;
+  }
+  return true;
+}
+
+// A step h <= cap over which the watched function f is proven positive. With W the mode part of
+// f and p2 the exact second derivative of its polynomial part,
+//   f(s + h) >= f + f1 h + (p2 - max|W''|) h^2 / 2                  (quadratic bound)
+//   f(s + h) >= f + f1 h + f2 h^2 / 2 - max|W'''| h^3 / 6           (cubic bound)
+// for all h >= 0, where max|W''| <= m2 and max|W'''| <= m3 over all later times. The quadratic
+// bound gives Newton-like convergence onto a simple root; the cubic one lets the search pass a
+// near-grazing minimum in a few steps. Returns cap when the whole interval is safe.
+double safe_step(double f, double f1, double f2, double p2, double m2, double m3, double cap) {
+  double h = quadratic_step(f, f1, 0.5 * (p2 - m2));
+  if (h >= cap) return cap;
+  if (f > 0) {
+    double H = 2.0 * h;
+    for (int k = 0; k < 60 && H < cap; ++k, H *= 2.0) {
+      if (!cubic_positive(f, f1, f2, m3, H)) return h;
+      h = H;
+    }
+    if (H >= cap && cubic_positive(f, f1, f2, m3, cap)) return cap;
+  }
+  return h;
+}
+
+// Is a watched function at (or, by round-off, just past) zero and moving down?
+bool at_root(double f, double f1, double f2) { return f <= 0 && (f1 < 0 || (f1 == 0 && f2 <= 0)); }
+
+}  // namespace
+
+ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor)
+    : n_(p.N),
+      d_(p.d),
+      g_(p.g),
+      floor_(floor),
+      tables_(p.N, p.k / p.m, damping_constant(p.k, p.e, p.m)) {
+  if (n_ < 1 || static_cast<int>(initial.z.size()) != n_ || static_cast<int>(initial.v.size()) != n_) {
+    throw std::invalid_argument("ExactEngine: the initial state must hold N positions and velocities");
+  }
+  const ContactLaw law = contact_law(p);
+  k_over_m_ = law.k_over_m;
+  D_ = law.D;
+  tau_c_ = law.tau_c;
+  const double t = initial.t;
+  now_ = last_event_t_ = t;
+  for (int i = 0; i < n_; ++i) {
+    if (!std::isfinite(initial.z[i]) || !std::isfinite(initial.v[i])) {
+      throw UnphysicalStateError(t, i + 1, i + 1, fmt::format("non-finite initial state of particle {}", i + 1));
+    }
+  }
+  hi_.assign(n_, -1);
+  lo_of_.assign(n_, 0);
+  t0_.assign(n_, t);
+  V0_.assign(n_, 0.0);
+  generation_.assign(n_, 0);
+  cache_.y.assign(n_, 0.0);
+  cache_.yd.assign(n_, 0.0);
+  y0_.assign(n_, 0.0);
+  yd0_.assign(n_, 0.0);
+  gap_s_.assign(n_, 0.0);
+  gap_t_.assign(n_, t);
+  gap_ua_.assign(n_, 0.0);
+  gap_ub_.assign(n_, 0.0);
+  for (auto* s : {&sx_, &sxd_, &sv_, &sy_, &syd_, &sv2_}) s->assign(n_, 0.0);
+  shq_.assign(2 * n_, 0.0);
+
+  // Clusters: maximal runs of overlapping neighbours.
+  std::vector<double> x(n_, 0.0);
+  for (int i = 0; i + 1 < n_; ++i) {
+    x[i] = d_ - (initial.z[i + 1] - initial.z[i]);
+    if (x[i] >= d_) {
+      throw UnphysicalStateError(t, i + 1, i + 2,
+                                 fmt::format("initial state: particles {} and {} overlap by {:.6g} d or more",
+                                             i + 1, i + 2, x[i] / d_));
+    }
+  }
+  for (int lo = 0; lo < n_;) {
+    int hi = lo;
+    while (hi + 1 < n_ && x[hi] > 0) ++hi;
+    form_cluster(lo, hi, t, &x[lo], &initial.v[lo]);
+    lo = hi + 1;
+  }
+  for (int i = 0; i + 1 < n_; ++i) {
+    if (lo_of_[i] != lo_of_[i + 1]) {
+      gap_s_[i] = -x[i];
+      rebase_gap(i, t);
+    }
+  }
+  floor_s_ = initial.z[0] - 0.5 * d_;
+  if (floor_ != nullptr && floor_s_ < -1e-12 * d_) {
+    throw UnphysicalStateError(t, 1, 1, "initial state: particle 1 is below the floor");
+  }
+  rebase_floor(t);
+
+  leaves_ = 1;
+  while (leaves_ < 2 * n_) leaves_ *= 2;
+  slots_.assign(leaves_, Slot{kInf, SlotKind::None, 0});
+  tree_.assign(2 * leaves_, 0);
+  for (int s = 0; s < leaves_; ++s) tree_[leaves_ + s] = s;
+  for (int node = leaves_ - 1; node >= 1; --node) tree_[node] = tree_[2 * node];
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) predict_cluster(lo);
+  for (int i = 0; i + 1 < n_; ++i) {
+    if (lo_of_[i] != lo_of_[i + 1]) predict_gap(i);
+  }
+  predict_floor();
+}
+
+// ----------------------------------------------------------------------------------------------
+// Clusters
+
+void ExactEngine::form_cluster(int lo, int hi, double t, const double* x, const double* v) {
+  const int n = hi - lo + 1;
+  hi_[lo] = hi;
+  double vsum = 0.0;
+  for (int p = 0; p < n; ++p) {
+    lo_of_[lo + p] = lo;
+    vsum += v[p];
+  }
+  t0_[lo] = t;
+  V0_[lo] = vsum / n;
+  generation_[lo] = ++formations_;
+  if (n >= 2) {
+    const ClusterModeTable& tab = tables_[n];
+    double* xd = sv2_.data();
+    for (int i = 0; i + 1 < n; ++i) xd[i] = v[i] - v[i + 1];  // x_i' = v_i - v_{i+1}
+    tab.to_modes(x, &y0_[lo]);
+    tab.to_modes(xd, &yd0_[lo]);
+  }
+}
+
+void ExactEngine::modes_at(int lo, double tau, double* y, double* yd) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  if (tau == 0.0) {
+    std::copy_n(&y0_[lo], tab.M, y);
+    std::copy_n(&yd0_[lo], tab.M, yd);
+    return;
+  }
+  for (int j = 0; j < tab.M; ++j) tab.modes[j].evolve(y0_[lo + j], yd0_[lo + j], tau, y[j], yd[j]);
+}
+
+void ExactEngine::cached_modes(int lo, double t, const double*& y, const double*& yd) const {
+  if (cache_.lo != lo || cache_.generation != generation_[lo] || cache_.t != t) {
+    modes_at(lo, t - t0_[lo], cache_.y.data(), cache_.yd.data());
+    cache_.lo = lo;
+    cache_.generation = generation_[lo];
+    cache_.t = t;
+  }
+  y = cache_.y.data();
+  yd = cache_.yd.data();
+}
+
+void ExactEngine::cluster_state(int lo, double t, double* x, double* xd, double* v) const {
+  const double *y = nullptr, *yd = nullptr;
+  if (cluster_size(lo) >= 2) cached_modes(lo, t, y, yd);
+  cluster_state_local(lo, t - t0_[lo], y, yd, x, xd, v);
+}
+
+void ExactEngine::cluster_state_local(int lo, double tau, const double* y, const double* yd, double* x,
+                                      double* xd, double* v) const {
+  const int n = cluster_size(lo);
+  const double vcom = V0_[lo] - g_ * tau;
+  if (n == 1) {
+    v[0] = vcom;
+    return;
+  }
+  const ClusterModeTable& tab = tables_[n];
+  tab.to_overlaps(y, x);
+  tab.to_overlaps(yd, xd);
+  // v_{i+1} = v_i - x_i', shifted so that the mean is the centre-of-mass velocity.
+  double vr = 0.0, sum = 0.0;
+  for (int p = 0; p < n; ++p) {
+    if (p > 0) vr -= xd[p - 1];
+    v[p] = vr;
+    sum += vr;
+  }
+  const double shift = vcom - sum / n;
+  for (int p = 0; p < n; ++p) v[p] += shift;
+}
+
+// u = z_com(t) - z_com(t0) + sum_j c_j y_j(t - t0): the particle's height up to a constant.
+double ExactEngine::edge_u(int lo, bool top, double t) const {
+  const double tau = t - t0_[lo];
+  double u = tau * (V0_[lo] - 0.5 * g_ * tau);
+  const int n = cluster_size(lo);
+  if (n >= 2) {
+    const ClusterModeTable& tab = tables_[n];
+    const double* c = top ? tab.top.data() : tab.bottom.data();
+    const double *y, *yd;
+    cached_modes(lo, t, y, yd);
+    for (int j = 0; j < tab.M; ++j) u += c[j] * y[j];
+  }
+  return u;
+}
+
+double ExactEngine::edge_velocity(int lo, bool top, double t) const {
+  const double tau = t - t0_[lo];
+  double w = V0_[lo] - g_ * tau;
+  const int n = cluster_size(lo);
+  if (n >= 2) {
+    const ClusterModeTable& tab = tables_[n];
+    const double* c = top ? tab.top.data() : tab.bottom.data();
+    const double *y, *yd;
+    cached_modes(lo, t, y, yd);
+    for (int j = 0; j < tab.M; ++j) w += c[j] * yd[j];
+  }
+  return w;
+}
+
+ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, double t) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  return EdgeTerm{&tab, &y0_[lo], &yd0_[lo], top ? tab.top.data() : tab.bottom.data(), sign, t - t0_[lo]};
+}
+
+// ----------------------------------------------------------------------------------------------
+// Gaps and the floor height
+
+double ExactEngine::gap_at(int i, double t) const {
+  return gap_s_[i] + (edge_u(i + 1, false, t) - gap_ub_[i]) - (edge_u(lo_of_[i], true, t) - gap_ua_[i]);
+}
+
+void ExactEngine::sync_gap(int i, double t) {
+  const double ua = edge_u(lo_of_[i], true, t), ub = edge_u(i + 1, false, t);
+  gap_s_[i] += (ub - gap_ub_[i]) - (ua - gap_ua_[i]);
+  gap_t_[i] = t;
+  gap_ua_[i] = ua;
+  gap_ub_[i] = ub;
+}
+
+// A neighbour that did not re-form keeps the displacement origin sync_gap gave it at t.
+void ExactEngine::rebase_gap(int i, double t) {
+  const int a = lo_of_[i], b = i + 1;
+  if (gap_t_[i] != t || t0_[a] == t) gap_ua_[i] = edge_u(a, true, t);
+  if (gap_t_[i] != t || t0_[b] == t) gap_ub_[i] = edge_u(b, false, t);
+  gap_t_[i] = t;
+}
+
+double ExactEngine::floor_height_at(double t) const { return floor_s_ + edge_u(0, false, t) - floor_u_; }
+
+void ExactEngine::sync_floor(double t) {
+  const double u = edge_u(0, false, t);
+  floor_s_ += u - floor_u_;
+  floor_t_ = t;
+  floor_u_ = u;
+}
+
+void ExactEngine::rebase_floor(double t) {
+  floor_t_ = t;
+  floor_u_ = edge_u(0, false, t);
+}
+
+// ----------------------------------------------------------------------------------------------
+// Prediction
+
+ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
+  if (fn.terms == 0) {  // free flight: a line or a parabola, solved in closed form
+    const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 <= 0))
+                         ? 0.0
+                         : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
+    return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
+  }
+  // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
+  // f(s) >= c0 + c1 s + p2 s^2/2 - W(0) - A with A = sum |a_j| sqrt(E_j)/omega0_j. If that
+  // parabola stays positive up to sigma_max there is no root (most gaps next to a short contact).
+  {
+    double w0 = 0.0, amplitude = 0.0;
+    for (int k = 0; k < fn.terms; ++k) {
+      const EdgeTerm& term = fn.term[k];
+      for (int j = 0; j < term.table->M; ++j) {
+        const ModeConstants& mc = term.table->modes[j];
+        double y = term.y0[j], yd = term.yd0[j];
+        if (term.tau0 != 0.0) mc.evolve(term.y0[j], term.yd0[j], term.tau0, y, yd);
+        const double a = term.sign * term.coef[j];
+        w0 += a * y;
+        amplitude += std::abs(a) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
+      }
+    }
+    const double lower0 = fn.c0 + w0 - 2.0 * amplitude;  // f(0) - 2A <= f(s) - [c1 s + p2 s^2/2]
+    if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
+  }
+  double sigma = 0.0;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    double f = fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma);
+    double f1 = fn.c1 + fn.p2 * sigma, f2 = fn.p2, m2 = 0.0, m3 = 0.0;
+    for (int k = 0; k < fn.terms; ++k) {
+      const EdgeTerm& term = fn.term[k];
+      const double tau = term.tau0 + sigma;
+      for (int j = 0; j < term.table->M; ++j) {
+        const ModeConstants& mc = term.table->modes[j];
+        double y, yd;
+        mc.evolve(term.y0[j], term.yd0[j], tau, y, yd);
+        const double a = term.sign * term.coef[j];
+        const double sqrtE = std::sqrt(yd * yd + mc.omega0_sq * y * y);
+        f += a * y;
+        f1 += a * yd;
+        f2 += a * mc.acceleration(y, yd);
+        m2 += std::abs(a) * mc.b2 * sqrtE;
+        m3 += std::abs(a) * mc.b3 * sqrtE;
+      }
+    }
+    if (at_root(f, f1, f2)) return {Root::Found, sigma, 0};
+    const double cap = sigma_max - sigma;
+    const double h = safe_step(f, f1, f2, fn.p2, m2, m3, cap);
+    if (h >= cap) return {Root::None, sigma_max, 0};
+    if (h <= 1e-15 * (sigma + tau_c_)) return {Root::Found, sigma + h, 0};
+    sigma += h;
+  }
+  return {Root::Refresh, sigma, 0};
+}
+
+// First time an overlap of the cluster returns to zero (which = pair within the cluster) or, when
+// watch_pass_through, first time an overlap reaches d (which = M + pair).
+ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_through) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  const int M = tab.M;
+  double* y = sy_.data();
+  double* yd = syd_.data();
+  double* ydd = sv2_.data();
+  double* x = sx_.data();
+  double* xd = sxd_.data();
+  double* xdd = sv_.data();
+  double tau = 0.0;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    double sum2 = 0.0, sum3 = 0.0;
+    for (int j = 0; j < M; ++j) {
+      const ModeConstants& mc = tab.modes[j];
+      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y[j], yd[j]);
+      ydd[j] = mc.acceleration(y[j], yd[j]);
+      const double sqrtE = std::sqrt(yd[j] * yd[j] + mc.omega0_sq * y[j] * y[j]);
+      sum2 += mc.b2 * sqrtE;
+      sum3 += mc.b3 * sqrtE;
+    }
+    const double m2 = tab.s_max * sum2, m3 = tab.s_max * sum3;  // |S_ij| <= sqrt(2/n)
+    tab.to_overlaps(y, x);
+    tab.to_overlaps(yd, xd);
+    tab.to_overlaps(ydd, xdd);
+    // Function k < M is overlap k; k >= M (when watched) is d - overlap (k - M).
+    const int functions = watch_pass_through ? 2 * M : M;
+    auto value = [&](int k, double& f, double& f1, double& f2) {
+      if (k < M) {
+        f = x[k], f1 = xd[k], f2 = xdd[k];
+      } else {
+        f = d_ - x[k - M], f1 = -xd[k - M], f2 = -xdd[k - M];
+      }
+    };
+    // Quadratic steps first (cheap); the cubic bound can only lengthen a step, so it is worked
+    // out only for functions whose quadratic step is shorter than the best step so far.
+    double* hq = shq_.data();
+    double h = kInf;
+    int which = -1;
+    for (int k = 0; k < functions; ++k) {
+      double f, f1, f2;
+      value(k, f, f1, f2);
+      if (at_root(f, f1, f2)) return {Root::Found, tau, k};
+      hq[k] = quadratic_step(f, f1, -0.5 * m2);
+      if (hq[k] < h) {
+        h = hq[k];
+        which = k;
+      }
+    }
+    if (which >= 0) {
+      double f, f1, f2;
+      value(which, f, f1, f2);
+      h = safe_step(f, f1, f2, 0.0, m2, m3, kInf);
+      for (int k = 0; k < functions; ++k) {
+        if (k == which || !(hq[k] < h)) continue;
+        value(k, f, f1, f2);
+        const double hk = safe_step(f, f1, f2, 0.0, m2, m3, h);
+        if (hk < h) {
+          h = hk;
+          which = k;
+        }
+      }
+    }
+    if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
+    if (h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
+    tau += h;
+  }
+  return {Root::Refresh, tau, 0};
+}
+
+// Two particles: one underdamped mode (lambda = 2), x = y = e^{-beta t} R sin(w t + phi), so the
+// contact ends at w t + phi = pi. From x = 0 this is t = pi / w = tau_c, Eq. (tauc).
+double ExactEngine::pair_contact_end(int lo) const {
+  const ModeConstants& mc = tables_[2].modes[0];
+  const double y0 = std::max(y0_[lo], 0.0), v0 = yd0_[lo];
+  if (y0 == 0 && v0 <= 0) return 0.0;
+  const double phi = std::atan2(y0, (v0 + mc.beta * y0) / mc.w);  // in [0, pi]
+  return (std::numbers::pi - phi) / mc.w;
+}
+
+void ExactEngine::predict_cluster(int lo) {
+  const int n = cluster_size(lo);
+  if (n == 1) {
+    set_slot(cluster_slot(lo), kInf, SlotKind::None, lo);
+    return;
+  }
+  const ClusterModeTable& tab = tables_[n];
+  // Largest overlap any later time can reach: |x_i| <= sqrt(2/n) sum_j sqrt(E_j) / omega0_j.
+  double reach = 0.0;
+  for (int j = 0; j < tab.M; ++j) {
+    const ModeConstants& mc = tab.modes[j];
+    const double y = y0_[lo + j], yd = yd0_[lo + j];
+    reach += std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
+  }
+  const bool watch = tab.s_max * reach >= d_;
+  const double t0 = t0_[lo];
+  if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {
+    const double tau = pair_contact_end(lo);
+    set_slot(cluster_slot(lo), t0 + tau, SlotKind::ContactEnd, lo, tau);
+    return;
+  }
+  const Root r = first_internal_root(lo, watch);
+  switch (r.kind) {
+    case Root::Found:
+      if (r.which >= tab.M) {
+        set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::PassThrough, lo + r.which - tab.M);
+      } else {
+        set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::ContactEnd, lo + r.which, r.sigma);
+      }
+      break;
+    case Root::Refresh: set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::Refresh, lo); break;
+    case Root::None: set_slot(cluster_slot(lo), kInf, SlotKind::None, lo); break;
+  }
+}
+
+void ExactEngine::predict_gap(int i) {
+  const int a = lo_of_[i], b = i + 1;
+  const double t = gap_t_[i];
+  // Valid until either neighbour changes on its own (its internal event or refresh); any other
+  // change of a neighbour re-predicts this gap.
+  const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
+  EdgeFunction fn;
+  // f(s) = gap(t) + [u_b(t+s) - u_b(t)] - [u_a(t+s) - u_a(t)]; gravity cancels in the
+  // centre-of-mass parts, which leaves a line plus the mode parts.
+  const double ta = t - t0_[a], tb = t - t0_[b];
+  fn.c1 = (V0_[b] - g_ * tb) - (V0_[a] - g_ * ta);
+  fn.c0 = gap_s_[i] - (gap_ub_[i] - tb * (V0_[b] - 0.5 * g_ * tb)) + (gap_ua_[i] - ta * (V0_[a] - 0.5 * g_ * ta));
+  if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
+  if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
+  const Root r = first_root(fn, horizon - t);
+  switch (r.kind) {
+    case Root::Found: set_slot(gap_slot(i), t + r.sigma, SlotKind::ContactBegin, i); break;
+    case Root::Refresh: set_slot(gap_slot(i), t + r.sigma, SlotKind::Refresh, i); break;
+    case Root::None: set_slot(gap_slot(i), kInf, SlotKind::None, i); break;
+  }
+}
+
+void ExactEngine::predict_floor() {
+  if (floor_ == nullptr) {
+    set_slot(floor_slot(), kInf, SlotKind::None, 0);
+    return;
+  }
+  const double t = floor_t_;
+  const double tau = t - t0_[0];
+  EdgeFunction fn;
+  // f(s) = h(t) + u_1(t+s) - u_1(t): a parabola under gravity plus the modes of the cluster.
+  fn.c1 = V0_[0] - g_ * tau;
+  fn.p2 = -g_;
+  fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
+  if (cluster_size(0) >= 2) fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
+  const Root r = first_root(fn, slots_[cluster_slot(0)].t - t);
+  switch (r.kind) {
+    case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;
+    case Root::Refresh: set_slot(floor_slot(), t + r.sigma, SlotKind::Refresh, 0); break;
+    case Root::None: set_slot(floor_slot(), kInf, SlotKind::None, 0); break;
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Events
+
+void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink) {
+  const int hi = hi_[lo];
+  if (lo > 0) sync_gap(lo - 1, t);
+  if (hi + 1 < n_) sync_gap(hi, t);
+  if (lo == 0) sync_floor(t);
+  // The cluster is taken at its own root time tau (not t - t0, which rounds): the overlap that
+  // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t).
+  double* x = sx_.data();
+  double* v = sv_.data();
+  modes_at(lo, tau, sy_.data(), syd_.data());
+  cluster_state_local(lo, tau, sy_.data(), syd_.data(), x, sxd_.data(), v);
+  const int r = pair - lo;
+  const double speed = std::abs(sxd_[r]);
+  form_cluster(lo, pair, t, x, v);
+  form_cluster(pair + 1, hi, t, x + r + 1, v + r + 1);
+  gap_s_[pair] = 0.0;  // the overlap has just returned to zero
+  if (lo > 0) rebase_gap(lo - 1, t);
+  rebase_gap(pair, t);
+  if (hi + 1 < n_) rebase_gap(hi, t);
+  if (lo == 0) rebase_floor(t);
+  ++counters_.contact_ends;
+  sink.on_event({EventKind::ContactEnd, t, pair, speed});
+  predict_cluster(lo);
+  predict_cluster(pair + 1);
+  if (lo > 0) predict_gap(lo - 1);
+  predict_gap(pair);
+  if (hi + 1 < n_) predict_gap(hi);
+  if (lo == 0) predict_floor();
+}
+
+void ExactEngine::merge(int pair, double t, EventSink& sink) {
+  const int a = lo_of_[pair], b = pair + 1, hi = hi_[b];
+  const int na = pair - a + 1;
+  if (a > 0) sync_gap(a - 1, t);
+  if (hi + 1 < n_) sync_gap(hi, t);
+  if (a == 0) sync_floor(t);
+  // Overlaps indexed from a: pairs a..pair-1 from cluster a, pair itself (0: contact begins),
+  // pairs b..hi-1 from cluster b; velocities of particles a..hi.
+  double* x = sx_.data();
+  double* v = sv_.data();
+  cluster_state(a, t, x, sxd_.data(), v);
+  cluster_state(b, t, x + na, sxd_.data() + na, v + na);
+  x[na - 1] = 0.0;
+  const double speed = std::abs(v[na - 1] - v[na]);
+  form_cluster(a, hi, t, x, v);
+  set_slot(cluster_slot(b), kInf, SlotKind::None, b);
+  set_slot(gap_slot(pair), kInf, SlotKind::None, pair);
+  if (a > 0) rebase_gap(a - 1, t);
+  if (hi + 1 < n_) rebase_gap(hi, t);
+  if (a == 0) rebase_floor(t);
+  sink.on_event({EventKind::ContactBegin, t, pair, speed});
+  predict_cluster(a);
+  if (a > 0) predict_gap(a - 1);
+  if (hi + 1 < n_) predict_gap(hi);
+  if (a == 0) predict_floor();
+}
+
+void ExactEngine::floor_hit(double t, EventSink& sink) {
+  const int hi = hi_[0];
+  if (hi + 1 < n_) sync_gap(hi, t);
+  double* v = sv_.data();
+  cluster_state(0, t, sx_.data(), sxd_.data(), v);
+  const double speed = floor_->next_speed();
+  if (!std::isfinite(speed) || speed < 0) {
+    throw UnphysicalStateError(t, 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t));
+  }
+  v[0] = speed;
+  form_cluster(0, hi, t, sx_.data(), v);
+  floor_s_ = 0.0;
+  rebase_floor(t);
+  if (hi + 1 < n_) rebase_gap(hi, t);
+  ++counters_.floor_hits;
+  sink.on_event({EventKind::FloorHit, t, 0, speed});
+  predict_cluster(0);
+  if (hi + 1 < n_) predict_gap(hi);
+  predict_floor();
+}
+
+// No physics happens: the cluster is re-formed from its own state so that its searches restart.
+void ExactEngine::refresh_cluster(int lo, double t) {
+  const int hi = hi_[lo];
+  if (lo > 0) sync_gap(lo - 1, t);
+  if (hi + 1 < n_) sync_gap(hi, t);
+  if (lo == 0) sync_floor(t);
+  cluster_state(lo, t, sx_.data(), sxd_.data(), sv_.data());
+  form_cluster(lo, hi, t, sx_.data(), sv_.data());
+  if (lo > 0) rebase_gap(lo - 1, t);
+  if (hi + 1 < n_) rebase_gap(hi, t);
+  if (lo == 0) rebase_floor(t);
+  predict_cluster(lo);
+  if (lo > 0) predict_gap(lo - 1);
+  if (hi + 1 < n_) predict_gap(hi);
+  if (lo == 0) predict_floor();
+}
+
+void ExactEngine::handle(int slot, EventSink& sink) {
+  const Slot s = slots_[slot];
+  const double t = s.t;
+  if (t == last_event_t_) {
+    if (++same_time_events_ > kMaxSameTimeEvents) {
+      throw UnphysicalStateError(t, s.pair + 1, s.pair + 2,
+                                 fmt::format("events pile up at t = {:.17g} without time advancing", t));
+    }
+  } else {
+    same_time_events_ = 0;
+    last_event_t_ = t;
+  }
+  ++counters_.steps;
+  if (slot == floor_slot()) {
+    if (s.kind == SlotKind::FloorHit) {
+      floor_hit(t, sink);
+    } else {
+      sync_floor(t);
+      predict_floor();
+    }
+  } else if (slot >= n_) {
+    const int i = slot - n_;
+    if (s.kind == SlotKind::ContactBegin) {
+      merge(i, t, sink);
+    } else {
+      sync_gap(i, t);
+      predict_gap(i);
+    }
+  } else if (s.kind == SlotKind::ContactEnd) {
+    split(slot, s.pair, t, s.tau, sink);
+  } else if (s.kind == SlotKind::PassThrough) {
+    throw UnphysicalStateError(
+        t, s.pair + 1, s.pair + 2,
+        fmt::format("particles {} and {} passed through each other at t = {:.10g} (overlap reached d)",
+                    s.pair + 1, s.pair + 2, t));
+  } else {
+    refresh_cluster(slot, t);
+  }
+}
+
+void ExactEngine::advance_to(double t, EventSink& sink) {
+  if (!(t >= now_)) throw std::logic_error("ExactEngine::advance_to: time must not go back");
+  while (slots_[next_slot()].t <= t) handle(next_slot(), sink);
+  now_ = t;
+  state_valid_ = false;
+}
+
+void ExactEngine::set_slot(int slot, double t, SlotKind kind, int pair, double tau) {
+  slots_[slot] = Slot{t, kind, pair, tau};
+  for (int node = (leaves_ + slot) >> 1; node >= 1; node >>= 1) {
+    const int l = tree_[2 * node], r = tree_[2 * node + 1];
+    const int win = slots_[r].t < slots_[l].t ? r : l;
+    // Above a node whose winner neither changed nor is the updated slot, nothing changes.
+    if (win == tree_[node] && win != slot) break;
+    tree_[node] = win;
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Observables
+
+const ChainState& ExactEngine::state() const {
+  if (state_valid_) return state_;
+  state_.t = now_;
+  state_.z.resize(n_);
+  state_.v.resize(n_);
+  double* x = sx_.data();
+  double* u_top = sxd_.data();  // edge displacement u of each cluster's top particle, at lo
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
+    cluster_state(lo, now_, x + lo, sv2_.data(), &state_.v[lo]);
+    const double ub = edge_u(lo, false, now_);  // modes come from the cache
+    u_top[lo] = edge_u(lo, true, now_);
+    if (lo == 0) {
+      state_.z[0] = 0.5 * d_ + floor_s_ + ub - floor_u_;
+    } else {
+      const int i = lo - 1;  // open pair below this cluster
+      x[i] = -(gap_s_[i] + (ub - gap_ub_[i]) - (u_top[lo_of_[i]] - gap_ua_[i]));
+    }
+  }
+  for (int i = 0; i + 1 < n_; ++i) state_.z[i + 1] = state_.z[i] + d_ - x[i];
+  state_valid_ = true;
+  return state_;
+}
+
+std::vector<double> ExactEngine::overlaps() const {
+  std::vector<double> x(n_, 0.0), xd(n_, 0.0), v(n_, 0.0);
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) cluster_state(lo, now_, &x[lo], &xd[lo], &v[lo]);
+  for (int i = 0; i + 1 < n_; ++i) {
+    if (lo_of_[i] != lo_of_[i + 1]) x[i] = -gap_at(i, now_);
+  }
+  x.pop_back();
+  return x;
+}
+
+std::vector<int> ExactEngine::cluster_sizes() const {
+  std::vector<int> sizes;
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) sizes.push_back(cluster_size(lo));
+  return sizes;
+}
+
+double ExactEngine::mechanical_energy_per_mass() const {
+  const ChainState& s = state();
+  const std::vector<double> x = overlaps();
+  double e = 0.0;
+  for (int i = 0; i < n_; ++i) e += 0.5 * s.v[i] * s.v[i] + g_ * (s.z[i] - 0.5 * d_);
+  for (double xi : x) {
+    if (xi > 0) e += 0.5 * k_over_m_ * xi * xi;
+  }
+  return e;
+}
+
+}  // namespace granchain

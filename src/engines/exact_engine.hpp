@@ -1,0 +1,163 @@
+#pragma once
+// Exact event-driven engine (issue 3). Between changes of the contact set the equations of motion
+// of the spring-dashpot chain (Eq. force-0) are linear with constant coefficients, so the motion
+// is known in closed form:
+//   - a free particle flies on a parabola;
+//   - a cluster of n touching particles has its centre of mass in free fall and its n-1 overlaps
+//     in n-1 independent damped sine modes (cluster_modes.hpp);
+// and time jumps from one event to the next: a gap closing (contact begins), an overlap returning
+// to zero (contact ends: one counted collision), particle 1 reaching the floor. Each event time is
+// the first root of a polynomial of degree <= 2 plus damped modes; it is found by steps that are
+// proven root-free (Taylor lower bounds whose remainders are bounded by the non-increasing mode
+// energies), which converge onto the root to round-off, so no event can be skipped.
+//
+// Positions are never stored as absolute heights. The engine keeps the gap of every open pair,
+// the overlaps of closed pairs (as mode amplitudes) and the height of particle 1 above the floor,
+// each as a value at a reference time plus displacements since then, so an overlap of 1e-7 d at
+// k = 1e12 keeps its full relative precision.
+#include <cstdint>
+#include <vector>
+
+#include "engines/cluster_modes.hpp"
+#include "engines/engine.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/floor.hpp"
+
+namespace granchain {
+
+class ExactEngine final : public Engine {
+ public:
+  // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
+  ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor);
+
+  std::string_view name() const override { return "exact"; }
+  void advance_to(double t, EventSink& sink) override;
+  const ChainState& state() const override;
+  double time() const override { return now_; }
+  EngineCounters counters() const override { return counters_; }
+
+  // Kinetic + elastic (k x^2 / 2 per closed contact) + gravitational energy at time(), per unit
+  // mass, with z measured from the floor level of the centres (d/2). For conservation tests.
+  double mechanical_energy_per_mass() const;
+  // Overlaps x_i = d - (z_{i+1} - z_i) at time() straight from the stored gaps and modes (full
+  // relative precision, unlike differences of state().z).
+  std::vector<double> overlaps() const;
+  // Sizes of the clusters of touching particles at time(), bottom first.
+  std::vector<int> cluster_sizes() const;
+
+ private:
+  enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
+  struct Slot {
+    double t;
+    SlotKind kind;
+    int pair;
+    double tau = 0;  // for cluster events: the root in the cluster's own time (t rounds t0 + tau)
+  };
+  struct Root {
+    enum Kind { Found, None, Refresh } kind;
+    double sigma;
+    int which;
+  };
+  // A function f(s) = c0 + c1 s + p2 s^2 / 2 + sum over up to two clusters of
+  // sign * sum_j coef_j y_j(tau0 + s): a gap (s >= 0 counted from now) or the height of particle 1
+  // above the floor.
+  struct EdgeTerm {
+    const ClusterModeTable* table;
+    const double* y0;
+    const double* yd0;
+    const double* coef;
+    double sign;
+    double tau0;
+  };
+  struct EdgeFunction {
+    double c0 = 0, c1 = 0, p2 = 0;
+    EdgeTerm term[2];
+    int terms = 0;
+  };
+
+  // --- clusters (indexed by their lowest particle lo) ---
+  int cluster_size(int lo) const { return hi_[lo] - lo + 1; }
+  void form_cluster(int lo, int hi, double t, const double* x, const double* v);
+  // Modes, overlaps (x, xd: n-1 values) and velocities (v: n values) of the cluster at time t.
+  void cluster_state(int lo, double t, double* x, double* xd, double* v) const;
+  // The same at local time tau = t - t0 given directly (no rounding through t).
+  void cluster_state_local(int lo, double tau, const double* y, const double* yd, double* x, double* xd,
+                           double* v) const;
+  void modes_at(int lo, double tau, double* y, double* yd) const;
+  // Displacement coordinate u of the bottom (top = false) or top particle: centre-of-mass
+  // displacement since the cluster formed plus the mode part; and its velocity.
+  double edge_u(int lo, bool top, double t) const;
+  double edge_velocity(int lo, bool top, double t) const;
+  EdgeTerm edge_term(int lo, bool top, double sign, double t) const;
+
+  // --- gaps and the floor height, each a value at a reference time ---
+  double gap_at(int i, double t) const;
+  void sync_gap(int i, double t);    // move the reference of open gap i to t (clusters unchanged)
+  void rebase_gap(int i, double t);  // after a neighbour re-formed at t: new displacement origin
+  double floor_height_at(double t) const;
+  void sync_floor(double t);
+  void rebase_floor(double t);
+
+  // --- prediction ---
+  void predict_cluster(int lo);
+  void predict_gap(int i);
+  void predict_floor();
+  Root first_root(const EdgeFunction& f, double sigma_max) const;
+  Root first_internal_root(int lo, bool watch_pass_through) const;
+  double pair_contact_end(int lo) const;  // two-particle cluster: closed form
+
+  // --- events ---
+  void handle(int slot, EventSink& sink);
+  void split(int lo, int pair, double t, double tau, EventSink& sink);
+  void merge(int pair, double t, EventSink& sink);
+  void floor_hit(double t, EventSink& sink);
+  void refresh_cluster(int lo, double t);
+  void after_reform(int lo, double t);  // rebase and re-predict what depends on cluster lo
+
+  // --- schedule: tournament tree over 2N slots (N clusters, N-1 gaps, the floor) ---
+  int cluster_slot(int lo) const { return lo; }
+  int gap_slot(int i) const { return n_ + i; }
+  int floor_slot() const { return 2 * n_ - 1; }
+  void set_slot(int slot, double t, SlotKind kind, int pair, double tau = 0.0);
+  int next_slot() const { return tree_[1]; }
+
+  int n_;
+  double d_, g_, k_over_m_, D_, tau_c_;
+  FloorDrive* floor_;
+  ClusterModeTables tables_;
+
+  std::vector<int> hi_;            // hi_[lo]: top particle of the cluster whose bottom is lo
+  std::vector<int> lo_of_;         // lo_of_[p]: bottom particle of p's cluster
+  std::vector<double> t0_, V0_;    // formation time and centre-of-mass velocity then
+  std::vector<std::uint64_t> generation_;  // distinct for every formation (mode-cache key)
+  std::uint64_t formations_ = 0;
+  std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1
+  std::vector<double> gap_s_, gap_t_, gap_ua_, gap_ub_;  // open pair i: gap at gap_t_, edge u's then
+  double floor_s_ = 0, floor_t_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
+
+  std::vector<Slot> slots_;
+  std::vector<int> tree_;
+  int leaves_ = 1;
+
+  double now_ = 0;
+  std::uint64_t same_time_events_ = 0;
+  double last_event_t_ = 0;
+  EngineCounters counters_;
+
+  mutable ChainState state_;
+  mutable bool state_valid_ = false;
+  mutable std::vector<double> sx_, sxd_, sv_, sy_, syd_, sv2_, shq_;  // scratch
+  // The modes of one cluster at one time, kept because an event evaluates the same cluster at
+  // the same instant several times (gaps below and above, floor, state).
+  struct ModeCache {
+    int lo = -1;
+    std::uint64_t generation = 0;
+    double t = 0;
+    std::vector<double> y, yd;
+  };
+  mutable ModeCache cache_;
+  // Modes of cluster lo at time t (through the cache); pointers valid until the next call.
+  void cached_modes(int lo, double t, const double*& y, const double*& yd) const;
+};
+
+}  // namespace granchain
