@@ -8,10 +8,14 @@
 #include <functional>
 #include <memory>
 
+#include <fmt/format.h>
+
+#include "engines/engine_factory.hpp"
 #include "engines/exact_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 #include "model/driven_column.hpp"
 #include "model/random.hpp"
+#include "simulation/driven_run.hpp"
 #include "test_helpers.hpp"
 
 using namespace granchain;
@@ -326,4 +330,64 @@ TEST(ExactEngine, IsDeterministic) {
   const auto a = once(), b = once();
   EXPECT_EQ(a.first, b.first);
   EXPECT_EQ(a.second, b.second);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Long: driven runs of the exact engine agree statistically with the reference engine on the grid
+// N in {3, 25}, e in {0.05, 0.5, 0.9}, k in {1e4, 1e6}. References: the paper's scheme at
+// dt = tau_c/100 and tau_c/1000, and the located scheme at tau_c/1000 (second order, converged).
+// Independent seeds, so the combined standard error is sqrt(s1^2 + s2^2). Prints the table.
+namespace {
+
+RunResult grid_run(int N, double e, double k, const std::string& engine, double dt_factor, std::uint64_t seed) {
+  RunSpec spec;
+  spec.params = ChainParameters{.N = N, .k = k, .e = e};
+  spec.engine = EngineChoice{engine, dt_factor};
+  spec.T = N < 10 ? (k > 1e5 ? 1000.0 : 5000.0) : (k > 1e5 ? 200.0 : 500.0);
+  spec.transient = 0.1 * spec.T;
+  spec.seed = seed;
+  return run_driven_column(spec, {}, 1.0);
+}
+
+double z_between(const Estimate& a, const Estimate& b) {
+  return (a.value - b.value) / std::sqrt(a.error * a.error + b.error * b.error);
+}
+
+}  // namespace
+
+TEST(LongExactEngine, AgreesStatisticallyWithReferenceOnTheGrid) {
+  std::printf("%4s %5s %6s | %-16s | %-16s %6s | %-16s %6s | %-16s %6s | %s\n", "N", "e", "k", "exact",
+              "ref dt=tc/100", "z", "ref dt=tc/1000", "z", "located tc/1000", "z", "profiles |z|>3 / max|z|");
+  for (int N : {3, 25}) {
+    for (double e : {0.05, 0.5, 0.9}) {
+      for (double k : {1e4, 1e6}) {
+        const RunResult ex = grid_run(N, e, k, "exact", 100, 1);
+        const RunResult paper = grid_run(N, e, k, "reference", 100, 2);
+        const RunResult fine = grid_run(N, e, k, "reference", 1000, 3);
+        const RunResult located = grid_run(N, e, k, "reference-located", 1000, 4);
+        const double z_paper = z_between(ex.n_coll, paper.n_coll);
+        const double z_fine = z_between(ex.n_coll, fine.n_coll);
+        const double z_loc = z_between(ex.n_coll, located.n_coll);
+        int beyond3 = 0;
+        double zmax = 0;
+        for (int i = 0; i < N; ++i) {
+          const ParticleProfile& a = ex.profiles[i];
+          const ParticleProfile& b = located.profiles[i];
+          for (double z : {z_between(a.z_mean, b.z_mean), z_between(a.z_std, b.z_std), z_between(a.kinetic, b.kinetic)}) {
+            beyond3 += std::abs(z) > 3;
+            zmax = std::max(zmax, std::abs(z));
+          }
+        }
+        auto cell = [](const Estimate& x) { return fmt::format("{:.4f} ± {:.4f}", x.value, x.error); };
+        std::printf("%4d %5.2f %6.0e | %-16s | %-16s %6.2f | %-16s %6.2f | %-16s %6.2f | %d of %d / %.2f\n", N, e, k,
+                    cell(ex.n_coll).c_str(), cell(paper.n_coll).c_str(), z_paper, cell(fine.n_coll).c_str(), z_fine,
+                    cell(located.n_coll).c_str(), z_loc, beyond3, 3 * N, zmax);
+        std::fflush(stdout);
+        EXPECT_LT(std::abs(z_loc), 3.0) << "N=" << N << " e=" << e << " k=" << k;
+        // 3N profile values: at most ~1% may exceed 3 sigma by chance; none should exceed 4.5.
+        EXPECT_LE(beyond3, std::max(1, 3 * N / 25)) << "N=" << N << " e=" << e << " k=" << k;
+        EXPECT_LT(zmax, 4.5) << "N=" << N << " e=" << e << " k=" << k;
+      }
+    }
+  }
 }

@@ -1,0 +1,107 @@
+// Exact event-driven engine against the reference Runge-Kutta engine on the same work, in one
+// invocation (issue 3). Each workload is the driven column of the paper (N = 25, thermal floor)
+// run through run_driven_column, the code path of `granchain run`, so both engines do the same
+// sampling and observation. The ratio is reference wall time / exact wall time.
+//
+//   build/bench/engine_speed            # full: the k = 1e8 reference runs take ~10 s each
+//   build/bench/engine_speed --quick    # every reference time extrapolated from a short run
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fmt/format.h>
+#include <string>
+#include <vector>
+
+#include "engines/engine_factory.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/driven_column.hpp"
+#include "model/floor.hpp"
+#include "simulation/driven_run.hpp"
+
+using namespace granchain;
+
+namespace {
+
+struct Workload {
+  double k, e, T;
+};
+
+struct Timing {
+  double wall = 0;        // seconds for the whole run (transient + window)
+  double simulated = 0;   // simulated time covered
+  std::uint64_t events = 0, steps = 0;
+  double n_coll = 0, n_coll_err = 0;
+};
+
+Timing time_run(const Workload& w, const std::string& engine, double T, std::uint64_t seed) {
+  RunSpec spec;
+  spec.params = ChainParameters{.N = 25, .k = w.k, .e = w.e};
+  spec.engine.name = engine;
+  spec.T = T;
+  spec.transient = 0.1 * T;
+  spec.seed = seed;
+  const auto t0 = std::chrono::steady_clock::now();
+  const RunResult r = run_driven_column(spec, {}, 1.0);
+  Timing out;
+  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.simulated = spec.T + spec.transient;
+  out.events = r.events;
+  out.steps = r.steps;
+  out.n_coll = r.n_coll.value;
+  out.n_coll_err = r.n_coll.error;
+  return out;
+}
+
+// The engine alone (no sampling, no observers): wall time per reported collision event.
+double engine_only_ns_per_collision(const Workload& w, std::uint64_t seed) {
+  const ChainParameters p{.N = 25, .k = w.k, .e = w.e};
+  ThermalFloor floor(p.kT0, p.m, seed);
+  auto engine = make_engine(EngineChoice{"exact"}, p, driven_column_initial_state(p, seed), &floor);
+  NullEventSink none;
+  const auto t0 = std::chrono::steady_clock::now();
+  engine->advance_to(1.1 * w.T, none);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const EngineCounters c = engine->counters();
+  return 1e9 * wall / static_cast<double>(c.contact_ends + c.floor_hits);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"granchain engine benchmark: exact event-driven vs reference Runge-Kutta (N = 25 driven column)"};
+  bool quick = false;
+  double short_T = 1.0;
+  std::uint64_t seed = 1;
+  app.add_flag("--quick", quick, "extrapolate every reference time from a short run");
+  app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation")->check(CLI::PositiveNumber);
+  app.add_option("--seed", seed, "base seed");
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<Workload> workloads{{1e8, 0.95, 100}, {1e8, 0.88, 100}, {1e8, 0.5, 100},
+                                        {1e10, 0.95, 10}, {1e10, 0.88, 10}, {1e10, 0.5, 10}};
+  fmt::print("N = 25 driven column, kT0 = 1, transient = T/10, seed {}; times are wall seconds on one core\n", seed);
+  fmt::print("{:>6} {:>5} {:>5} | {:>14} {:>9} {:>9} {:>11} | {:>10} {:>12} {:>12} | {:>8}\n", "k", "e", "T",
+             "n_coll (exact)", "exact s", "ns/coll", "engine-only", "ref s", "ref source", "steps/coll", "ratio");
+  for (const Workload& w : workloads) {
+    const Timing ex = time_run(w, "exact", w.T, seed);
+    const double ns_per_collision = 1e9 * ex.wall / static_cast<double>(ex.events);
+    const double ns_engine = engine_only_ns_per_collision(w, seed);
+    // The reference at k = 1e10 (and everywhere with --quick): a short run, its wall time scaled
+    // by simulated time (its cost is a fixed number of steps per unit time).
+    const bool extrapolate = quick || w.k > 1e8;
+    const Timing ref = time_run(w, "reference", extrapolate ? short_T : w.T, seed);
+    const double ref_wall = ref.wall * (ex.simulated / ref.simulated);
+    const double steps_per_collision =
+        static_cast<double>(ref.steps) / ref.simulated * ex.simulated / static_cast<double>(ex.events);
+    fmt::print("{:>6.0e} {:>5} {:>5} | {:>8.2f} ± {:<4.2f} {:>9.3f} {:>9.0f} {:>11.0f} | {:>10.2f} {:>12} {:>12.0f} | {:>7.0f}x\n",
+               w.k, w.e, w.T, ex.n_coll, ex.n_coll_err, ex.wall, ns_per_collision, ns_engine, ref_wall,
+               extrapolate ? fmt::format("T={} x{:.0f}", short_T, ex.simulated / ref.simulated) : "measured",
+               steps_per_collision, ref_wall / ex.wall);
+    std::fflush(stdout);
+  }
+  fmt::print(
+      "ns/coll: exact wall time of the whole run (sampling included) per collision event (contact end or "
+      "floor hit, transient included);\nengine-only: the same without sampling or observers; steps/coll: "
+      "reference steps per collision event; ratio: reference s / exact s.\n");
+  return 0;
+}
