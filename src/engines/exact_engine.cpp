@@ -237,20 +237,6 @@ double ExactEngine::edge_u(int lo, bool top, double t) const {
   return u;
 }
 
-double ExactEngine::edge_velocity(int lo, bool top, double t) const {
-  const double tau = t - t0_[lo];
-  double w = V0_[lo] - g_ * tau;
-  const int n = cluster_size(lo);
-  if (n >= 2) {
-    const ClusterModeTable& tab = tables_[n];
-    const double* c = top ? tab.top.data() : tab.bottom.data();
-    const double *y, *yd;
-    cached_modes(lo, t, y, yd);
-    for (int j = 0; j < tab.M; ++j) w += c[j] * yd[j];
-  }
-  return w;
-}
-
 ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, double t) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
   return EdgeTerm{&tab, &y0_[lo], &yd0_[lo], top ? tab.top.data() : tab.bottom.data(), sign, t - t0_[lo]};
@@ -303,26 +289,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
                          : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
-  // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
-  // f(s) >= c0 + c1 s + p2 s^2/2 - W(0) - A with A = sum |a_j| sqrt(E_j)/omega0_j. If that
-  // parabola stays positive up to sigma_max there is no root (most gaps next to a short contact).
-  {
-    double w0 = 0.0, amplitude = 0.0;
-    for (int k = 0; k < fn.terms; ++k) {
-      const EdgeTerm& term = fn.term[k];
-      for (int j = 0; j < term.table->M; ++j) {
-        const ModeConstants& mc = term.table->modes[j];
-        double y = term.y0[j], yd = term.yd0[j];
-        if (term.tau0 != 0.0) mc.evolve(term.y0[j], term.yd0[j], term.tau0, y, yd);
-        const double a = term.sign * term.coef[j];
-        w0 += a * y;
-        amplitude += std::abs(a) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
-      }
-    }
-    const double lower0 = fn.c0 + w0 - 2.0 * amplitude;  // f(0) - 2A <= f(s) - [c1 s + p2 s^2/2]
-    if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
-  }
-  double sigma = 0.0;
+  double sigma = 0.0, amplitude = 0.0;
   for (int it = 0; it < kMaxIterations; ++it) {
     double f = fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma);
     double f1 = fn.c1 + fn.p2 * sigma, f2 = fn.p2, m2 = 0.0, m3 = 0.0;
@@ -340,9 +307,17 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         f2 += a * mc.acceleration(y, yd);
         m2 += std::abs(a) * mc.b2 * sqrtE;
         m3 += std::abs(a) * mc.b3 * sqrtE;
+        if (it == 0) amplitude += std::abs(a) * sqrtE / std::sqrt(mc.omega0_sq);
       }
     }
     if (at_root(f, f1, f2)) return {Root::Found, sigma, 0};
+    // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
+    // f(s) >= f(0) - 2A + c1 s + p2 s^2/2 with A = sum |a_j| sqrt(E_j)/omega0_j. If that parabola
+    // stays positive up to sigma_max there is no root (most gaps next to a short contact).
+    if (it == 0) {
+      const double lower0 = f - 2.0 * amplitude;
+      if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
+    }
     const double cap = sigma_max - sigma;
     const double h = safe_step(f, f1, f2, fn.p2, m2, m3, cap);
     if (h >= cap) return {Root::None, sigma_max, 0};
@@ -701,12 +676,6 @@ std::vector<double> ExactEngine::overlaps() const {
   }
   x.pop_back();
   return x;
-}
-
-std::vector<int> ExactEngine::cluster_sizes() const {
-  std::vector<int> sizes;
-  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) sizes.push_back(cluster_size(lo));
-  return sizes;
 }
 
 double ExactEngine::mechanical_energy_per_mass() const {

@@ -42,8 +42,6 @@ class ExactEngine final : public Engine {
   // Overlaps x_i = d - (z_{i+1} - z_i) at time() straight from the stored gaps and modes (full
   // relative precision, unlike differences of state().z).
   std::vector<double> overlaps() const;
-  // Sizes of the clusters of touching particles at time(), bottom first.
-  std::vector<int> cluster_sizes() const;
 
  private:
   enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
@@ -85,9 +83,8 @@ class ExactEngine final : public Engine {
                            double* v) const;
   void modes_at(int lo, double tau, double* y, double* yd) const;
   // Displacement coordinate u of the bottom (top = false) or top particle: centre-of-mass
-  // displacement since the cluster formed plus the mode part; and its velocity.
+  // displacement since the cluster formed plus the mode part.
   double edge_u(int lo, bool top, double t) const;
-  double edge_velocity(int lo, bool top, double t) const;
   EdgeTerm edge_term(int lo, bool top, double sign, double t) const;
 
   // --- gaps and the floor height, each a value at a reference time ---
