@@ -24,6 +24,7 @@ ModeConstants::ModeConstants(double beta_, double omega0_squared)
   const double omega0 = std::sqrt(omega0_squared);
   b2 = 2.0 * beta + omega0;
   b3 = 2.0 * beta * b2 + omega0_squared;
+  b4 = 2.0 * beta * b3 + omega0_squared * b2;
 }
 
 // With C(t), S(t) the solutions of the undamped-frame equation (C(0) = 1, S(0) = 0, S'(0) = 1:
@@ -31,6 +32,11 @@ ModeConstants::ModeConstants(double beta_, double omega0_squared)
 //   y(t)  = e^{-beta t} [ y0 C + (v0 + beta y0) S ]
 //   y'(t) = e^{-beta t} [ v0 C - (beta v0 + omega0^2 y0) S ]
 void ModeConstants::evolve(double y0, double v0, double t, double& y, double& yd) const {
+  if (t == 0.0) {  // no transcendental calls for the state at formation
+    y = y0;
+    yd = v0;
+    return;
+  }
   double eC = 0.0, eS = 0.0;  // e^{-beta t} C(t), e^{-beta t} S(t)
   switch (kind) {
     case ModeKind::Under: {
@@ -103,6 +109,23 @@ void ClusterModeTable::to_overlaps(const double* y, double* x) const {
     const double* row = &S[static_cast<std::size_t>(i) * M];
     for (int j = 0; j < M; ++j) sum += row[j] * y[j];
     x[i] = sum;
+  }
+}
+
+void ClusterModeTable::to_overlaps4(const double* const y[4], double* const x[4]) const {
+  for (int i = 0; i < M; ++i) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    const double* row = &S[static_cast<std::size_t>(i) * M];
+    for (int j = 0; j < M; ++j) {
+      s0 += row[j] * y[0][j];
+      s1 += row[j] * y[1][j];
+      s2 += row[j] * y[2][j];
+      s3 += row[j] * y[3][j];
+    }
+    x[0][i] = s0;
+    x[1][i] = s1;
+    x[2][i] = s2;
+    x[3][i] = s3;
   }
 }
 

@@ -15,13 +15,15 @@ namespace granchain {
 enum class ModeKind : unsigned char { Under, Critical, Over };
 
 // One damped oscillator y'' + 2 beta y' + omega0^2 y = 0 and the bounds the root finder needs.
-// Its energy E = y'^2 + omega0^2 y^2 never grows (dE/dt = -4 beta y'^2), so for all later times
-//   |y''| <= b2 sqrt(E),  b2 = 2 beta + omega0,   |y'''| <= b3 sqrt(E),  b3 = 2 beta b2 + omega0^2.
+// Its energy E = y'^2 + omega0^2 y^2 never grows (dE/dt = -4 beta y'^2), and every derivative
+// obeys the same equation, y^(n+1) = -2 beta y^(n) - omega0^2 y^(n-1); so for all later times
+//   |y^(n)| <= b_n sqrt(E),  b_0 = 1/omega0, b_1 = 1, b_(n+1) = 2 beta b_n + omega0^2 b_(n-1)
+// (b2 = 2 beta + omega0, b3 = 2 beta b2 + omega0^2, b4 = 2 beta b3 + omega0^2 b2).
 struct ModeConstants {
   ModeConstants() = default;
   ModeConstants(double beta, double omega0_squared);
   double beta = 0, omega0_sq = 0, w = 0;  // w = sqrt(|omega0^2 - beta^2|)
-  double b2 = 0, b3 = 0;
+  double b2 = 0, b3 = 0, b4 = 0;
   ModeKind kind = ModeKind::Under;
 
   // y(t), y'(t) from y(0) = y0, y'(0) = v0, exactly.
@@ -55,6 +57,7 @@ struct ClusterModeTable {
 
   // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x).
   void to_overlaps(const double* y, double* x) const;
+  void to_overlaps4(const double* const y[4], double* const x[4]) const;  // four vectors in one pass
   void to_modes(const double* x, double* y) const;
 };
 

@@ -15,6 +15,7 @@ struct EngineCounters {
   std::uint64_t steps = 0;         // integration steps (time-stepped engines) or event updates
   std::uint64_t contact_ends = 0;  // all contact ends since the start, transient included
   std::uint64_t floor_hits = 0;    // all floor hits since the start, transient included
+  std::uint64_t search_steps = 0;  // event-driven engines: root-free steps of the event searches
 };
 
 class Engine {

@@ -27,43 +27,66 @@ double quadratic_step(double f, double f1, double a) {
   return f1 >= 0 ? (f1 + disc) / (-2.0 * a) : 2.0 * f / (disc - f1);
 }
 
-// Is the cubic c(h) = f + f1 h + f2 h^2/2 - m3 h^3/6 positive on (0, H]? (c(0) = f > 0.)
-bool cubic_positive(double f, double f1, double f2, double m3, double H) {
-  auto c = [&](double h) { return f + h * (f1 + h * (0.5 * f2 - m3 * h / 6.0)); };
-  if (!(c(H) > 0)) return false;
-  // Interior minima sit at roots of c'(h) = f1 + f2 h - m3 h^2 / 2.
-  if (m3 > 0) {
-    const double disc = f2 * f2 + 2.0 * m3 * f1;
-    if (disc >= 0) {
-      const double r = std::sqrt(disc);
-      for (double h : {(f2 - r) / m3, (f2 + r) / m3}) {
-        if (h > 0 && h < H && !(c(h) > 0)) return false;
-      }
-    }
-  } else if (f2 != 0) {
-    const double h = -f1 / f2;
-    if (h > 0 && h < H && !(c(h) > 0)) return false;
+// The watched function f near the current search time s, for steps h >= 0:
+//   f(s + h) >= f + f1 h + (p2 - m2) h^2 / 2                              (quadratic bound)
+//   f(s + h) >= f + f1 h + f2 h^2 / 2 + f3 h^3 / 6 - m4 h^4 / 24           (quartic bound)
+// with f..f3 the exact derivatives at s, p2 the exact second derivative of its polynomial part
+// (the modes' third and higher derivatives are its only ones), and m2 >= |W''|, m4 >= |W''''|
+// bounds on its mode part W over all later times (ModeConstants: b_n times the non-increasing
+// mode energies).
+struct Jet {
+  double f, f1, f2, f3;
+  double p2, m2, m4;
+  // The quartic lower bound and its slope.
+  double quartic(double h) const { return f + h * (f1 + h * (0.5 * f2 + h * (f3 / 6.0 - m4 * h / 24.0))); }
+  double quartic_slope(double h) const { return f1 + h * (f2 + h * (0.5 * f3 - m4 * h / 6.0)); }
+  // Upper end of the interval that must hold f's first root when f > 0 up to the safe step h:
+  // f(s + h) <= f + f1 h + (p2 + m2) h^2 / 2, so f has a root by the first root of that parabola
+  // (+inf if it has none).
+  double root_upper() const {
+    const double a = 0.5 * (p2 + m2);
+    if (!(f1 < 0)) return kInf;
+    const double disc = f1 * f1 - 4.0 * a * std::max(f, 0.0);
+    return disc < 0 ? kInf : 2.0 * std::max(f, 0.0) / (std::sqrt(disc) - f1);
   }
-  return true;
-}
+  // Is the quartic bound positive on [0, H]? Sufficient test: every Bernstein coefficient of it
+  // on [0, H] is positive (the polynomial is a convex combination of them there).
+  bool quartic_positive(double H) const {
+    const double a0 = f, a1 = f1 * H, a2 = 0.5 * f2 * H * H, a3 = f3 * H * H * H / 6.0,
+                 a4 = -m4 * H * H * H * H / 24.0;
+    return a0 + 0.25 * a1 > 0 && a0 + 0.5 * a1 + a2 / 6.0 > 0 && a0 + 0.75 * a1 + 0.5 * a2 + 0.25 * a3 > 0 &&
+           a0 + a1 + a2 + a3 + a4 > 0;
+  }
+};
 
-// A step h <= cap over which the watched function f is proven positive. With W the mode part of
-// f and p2 the exact second derivative of its polynomial part,
-//   f(s + h) >= f + f1 h + (p2 - max|W''|) h^2 / 2                  (quadratic bound)
-//   f(s + h) >= f + f1 h + f2 h^2 / 2 - max|W'''| h^3 / 6           (cubic bound)
-// for all h >= 0, where max|W''| <= m2 and max|W'''| <= m3 over all later times. The quadratic
-// bound gives Newton-like convergence onto a simple root; the cubic one lets the search pass a
-// near-grazing minimum in a few steps. Returns cap when the whole interval is safe.
-double safe_step(double f, double f1, double f2, double p2, double m2, double m3, double cap) {
-  double h = quadratic_step(f, f1, 0.5 * (p2 - m2));
+// A step h <= cap over which f is proven positive (f > 0 at the start). The quadratic bound
+// gives a first safe step; Newton's method on the quartic bound then looks for that bound's
+// first root, and the step is extended to just short of it when the Bernstein test proves the
+// quartic positive up there. Near a simple root of f the quartic's root differs from f's by
+// O(m4 h^4 / |f1|), so the search closes in on an event with few steps. Returns cap when the
+// whole interval is safe.
+double safe_step(const Jet& j, double cap) {
+  const double h = quadratic_step(j.f, j.f1, 0.5 * (j.p2 - j.m2));
   if (h >= cap) return cap;
-  if (f > 0) {
-    double H = 2.0 * h;
-    for (int k = 0; k < 60 && H < cap; ++k, H *= 2.0) {
-      if (!cubic_positive(f, f1, f2, m3, H)) return h;
-      h = H;
+  if (!(j.f > 0)) return h;
+  double r = h;
+  for (int k = 0; k < 8; ++k) {
+    const double p = j.quartic(r), dp = j.quartic_slope(r);
+    double next = dp < 0 ? r - p / dp : 2.0 * r + h;
+    if (!(next > 0)) break;
+    if (next >= cap) {
+      r = cap;
+      break;
     }
-    if (H >= cap && cubic_positive(f, f1, f2, m3, cap)) return cap;
+    const bool converged = std::abs(next - r) <= 1e-8 * (next - h);
+    r = next;
+    if (converged) break;
+  }
+  if (!(r > h)) return h;
+  // Just short of the quartic's root, where it is still clearly positive.
+  double H = r >= cap ? cap : h + (r - h) * (1.0 - 1e-6);
+  for (int tries = 0; tries < 2; ++tries, H = h + 0.5 * (H - h)) {
+    if (j.quartic_positive(H)) return H;
   }
   return h;
 }
@@ -107,6 +130,10 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   gap_ua_.assign(n_, 0.0);
   gap_ub_.assign(n_, 0.0);
   for (auto* s : {&sx_, &sxd_, &sv_, &sy_, &syd_, &sv2_}) s->assign(n_, 0.0);
+  for (int k = 0; k < 4; ++k) {
+    sy4_[k].assign(n_, 0.0);
+    sx4_[k].assign(n_, 0.0);
+  }
   shq_.assign(2 * n_, 0.0);
 
   // Clusters: maximal runs of overlapping neighbours.
@@ -140,8 +167,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   leaves_ = 1;
   while (leaves_ < 2 * n_) leaves_ *= 2;
   slots_.assign(leaves_, Slot{kInf, SlotKind::None, 0});
-  tree_.assign(2 * leaves_, 0);
-  for (int s = 0; s < leaves_; ++s) tree_[leaves_ + s] = s;
+  tree_.assign(2 * leaves_, TreeNode{kInf, 0});
+  for (int s = 0; s < leaves_; ++s) tree_[leaves_ + s].slot = s;
   for (int node = leaves_ - 1; node >= 1; --node) tree_[node] = tree_[2 * node];
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) predict_cluster(lo);
   for (int i = 0; i + 1 < n_; ++i) {
@@ -291,8 +318,8 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
   }
   double sigma = 0.0, amplitude = 0.0;
   for (int it = 0; it < kMaxIterations; ++it) {
-    double f = fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma);
-    double f1 = fn.c1 + fn.p2 * sigma, f2 = fn.p2, m2 = 0.0, m3 = 0.0;
+    ++counters_.search_steps;
+    Jet jet{fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma), fn.c1 + fn.p2 * sigma, fn.p2, 0.0, fn.p2, 0.0, 0.0};
     for (int k = 0; k < fn.terms; ++k) {
       const EdgeTerm& term = fn.term[k];
       const double tau = term.tau0 + sigma;
@@ -301,27 +328,30 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         double y, yd;
         mc.evolve(term.y0[j], term.yd0[j], tau, y, yd);
         const double a = term.sign * term.coef[j];
+        const double ydd = mc.acceleration(y, yd);
         const double sqrtE = std::sqrt(yd * yd + mc.omega0_sq * y * y);
-        f += a * y;
-        f1 += a * yd;
-        f2 += a * mc.acceleration(y, yd);
-        m2 += std::abs(a) * mc.b2 * sqrtE;
-        m3 += std::abs(a) * mc.b3 * sqrtE;
+        jet.f += a * y;
+        jet.f1 += a * yd;
+        jet.f2 += a * ydd;
+        jet.f3 += a * mc.acceleration(yd, ydd);
+        jet.m2 += std::abs(a) * mc.b2 * sqrtE;
+        jet.m4 += std::abs(a) * mc.b4 * sqrtE;
         if (it == 0) amplitude += std::abs(a) * sqrtE / std::sqrt(mc.omega0_sq);
       }
     }
-    if (at_root(f, f1, f2)) return {Root::Found, sigma, 0};
+    if (at_root(jet.f, jet.f1, jet.f2)) return {Root::Found, sigma, 0};
     // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
     // f(s) >= f(0) - 2A + c1 s + p2 s^2/2 with A = sum |a_j| sqrt(E_j)/omega0_j. If that parabola
     // stays positive up to sigma_max there is no root (most gaps next to a short contact).
     if (it == 0) {
-      const double lower0 = f - 2.0 * amplitude;
+      const double lower0 = jet.f - 2.0 * amplitude;
       if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
     }
     const double cap = sigma_max - sigma;
-    const double h = safe_step(f, f1, f2, fn.p2, m2, m3, cap);
+    const double h = safe_step(jet, cap);
     if (h >= cap) return {Root::None, sigma_max, 0};
-    if (h <= 1e-15 * (sigma + tau_c_)) return {Root::Found, sigma + h, 0};
+    // Converged: the root lies in (sigma + h, sigma + root_upper], an interval of round-off size.
+    if (jet.root_upper() - h <= 1e-15 * (sigma + tau_c_)) return {Root::Found, sigma + h, 0};
     sigma += h;
   }
   return {Root::Refresh, sigma, 0};
@@ -332,59 +362,52 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
 ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_through) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
   const int M = tab.M;
-  double* y = sy_.data();
-  double* yd = syd_.data();
-  double* ydd = sv2_.data();
-  double* x = sx_.data();
-  double* xd = sxd_.data();
-  double* xdd = sv_.data();
+  // Mode derivatives 0..3 and the overlaps' (x = S y for each).
+  double* y[4] = {sy4_[0].data(), sy4_[1].data(), sy4_[2].data(), sy4_[3].data()};
+  double* x[4] = {sx4_[0].data(), sx4_[1].data(), sx4_[2].data(), sx4_[3].data()};
   double tau = 0.0;
   for (int it = 0; it < kMaxIterations; ++it) {
-    double sum2 = 0.0, sum3 = 0.0;
+    ++counters_.search_steps;
+    double sum2 = 0.0, sum4 = 0.0;
     for (int j = 0; j < M; ++j) {
       const ModeConstants& mc = tab.modes[j];
-      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y[j], yd[j]);
-      ydd[j] = mc.acceleration(y[j], yd[j]);
-      const double sqrtE = std::sqrt(yd[j] * yd[j] + mc.omega0_sq * y[j] * y[j]);
+      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y[0][j], y[1][j]);
+      y[2][j] = mc.acceleration(y[0][j], y[1][j]);
+      y[3][j] = mc.acceleration(y[1][j], y[2][j]);
+      const double sqrtE = std::sqrt(y[1][j] * y[1][j] + mc.omega0_sq * y[0][j] * y[0][j]);
       sum2 += mc.b2 * sqrtE;
-      sum3 += mc.b3 * sqrtE;
+      sum4 += mc.b4 * sqrtE;
     }
-    const double m2 = tab.s_max * sum2, m3 = tab.s_max * sum3;  // |S_ij| <= sqrt(2/n)
-    tab.to_overlaps(y, x);
-    tab.to_overlaps(yd, xd);
-    tab.to_overlaps(ydd, xdd);
+    const double m2 = tab.s_max * sum2, m4 = tab.s_max * sum4;  // |S_ij| <= sqrt(2/n)
+    tab.to_overlaps4(y, x);
     // Function k < M is overlap k; k >= M (when watched) is d - overlap (k - M).
     const int functions = watch_pass_through ? 2 * M : M;
-    auto value = [&](int k, double& f, double& f1, double& f2) {
-      if (k < M) {
-        f = x[k], f1 = xd[k], f2 = xdd[k];
-      } else {
-        f = d_ - x[k - M], f1 = -xd[k - M], f2 = -xdd[k - M];
-      }
+    auto jet_of = [&](int k) {
+      if (k < M) return Jet{x[0][k], x[1][k], x[2][k], x[3][k], 0.0, m2, m4};
+      const int i = k - M;
+      return Jet{d_ - x[0][i], -x[1][i], -x[2][i], -x[3][i], 0.0, m2, m4};
     };
-    // Quadratic steps first (cheap); the cubic bound can only lengthen a step, so it is worked
+    // Quadratic steps first (cheap); the quartic bound can only lengthen a step, so it is worked
     // out only for functions whose quadratic step is shorter than the best step so far.
     double* hq = shq_.data();
     double h = kInf;
     int which = -1;
     for (int k = 0; k < functions; ++k) {
-      double f, f1, f2;
-      value(k, f, f1, f2);
-      if (at_root(f, f1, f2)) return {Root::Found, tau, k};
-      hq[k] = quadratic_step(f, f1, -0.5 * m2);
+      const Jet jk = jet_of(k);
+      if (at_root(jk.f, jk.f1, jk.f2)) return {Root::Found, tau, k};
+      hq[k] = quadratic_step(jk.f, jk.f1, -0.5 * m2);
       if (hq[k] < h) {
         h = hq[k];
         which = k;
       }
     }
     if (which >= 0) {
-      double f, f1, f2;
-      value(which, f, f1, f2);
-      h = safe_step(f, f1, f2, 0.0, m2, m3, kInf);
+      h = safe_step(jet_of(which), kInf);
       for (int k = 0; k < functions; ++k) {
         if (k == which || !(hq[k] < h)) continue;
-        value(k, f, f1, f2);
-        const double hk = safe_step(f, f1, f2, 0.0, m2, m3, h);
+        const Jet jk = jet_of(k);
+        if (jk.quartic_positive(h)) continue;  // proven positive over the whole step
+        const double hk = safe_step(jk, h);
         if (hk < h) {
           h = hk;
           which = k;
@@ -392,7 +415,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       }
     }
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
-    if (h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
+    if (jet_of(which).root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
     tau += h;
   }
   return {Root::Refresh, tau, 0};
@@ -626,19 +649,24 @@ void ExactEngine::handle(int slot, EventSink& sink) {
 
 void ExactEngine::advance_to(double t, EventSink& sink) {
   if (!(t >= now_)) throw std::logic_error("ExactEngine::advance_to: time must not go back");
-  while (slots_[next_slot()].t <= t) handle(next_slot(), sink);
+  while (tree_[1].t <= t) handle(next_slot(), sink);
   now_ = t;
   state_valid_ = false;
 }
 
 void ExactEngine::set_slot(int slot, double t, SlotKind kind, int pair, double tau) {
   slots_[slot] = Slot{t, kind, pair, tau};
-  for (int node = (leaves_ + slot) >> 1; node >= 1; node >>= 1) {
-    const int l = tree_[2 * node], r = tree_[2 * node + 1];
-    const int win = slots_[r].t < slots_[l].t ? r : l;
-    // Above a node whose winner neither changed nor is the updated slot, nothing changes.
-    if (win == tree_[node] && win != slot) break;
-    tree_[node] = win;
+  int node = leaves_ + slot;
+  if (tree_[node].t == t) return;  // same time (often +inf again): the tree stays as it is
+  tree_[node].t = t;
+  // Each node holds the earliest of its two children (the left one on a tie). Above a node whose
+  // winner and time did not change, nothing changes.
+  for (node >>= 1; node >= 1; node >>= 1) {
+    const TreeNode& a = tree_[2 * node];
+    const TreeNode& b = tree_[2 * node + 1];
+    const TreeNode& w = b.t < a.t ? b : a;
+    if (tree_[node].slot == w.slot && tree_[node].t == w.t) break;
+    tree_[node] = w;
   }
 }
 
@@ -653,9 +681,17 @@ const ChainState& ExactEngine::state() const {
   double* x = sx_.data();
   double* u_top = sxd_.data();  // edge displacement u of each cluster's top particle, at lo
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
-    cluster_state(lo, now_, x + lo, sv2_.data(), &state_.v[lo]);
-    const double ub = edge_u(lo, false, now_);  // modes come from the cache
-    u_top[lo] = edge_u(lo, true, now_);
+    double ub;
+    if (hi_[lo] == lo) {  // a free particle: a parabola (the common case, written out)
+      const double tau = now_ - t0_[lo];
+      state_.v[lo] = V0_[lo] - g_ * tau;
+      ub = tau * (V0_[lo] - 0.5 * g_ * tau);
+      u_top[lo] = ub;
+    } else {
+      cluster_state(lo, now_, x + lo, sv2_.data(), &state_.v[lo]);
+      ub = edge_u(lo, false, now_);  // modes come from the cache
+      u_top[lo] = edge_u(lo, true, now_);
+    }
     if (lo == 0) {
       state_.z[0] = 0.5 * d_ + floor_s_ + ub - floor_u_;
     } else {

@@ -116,7 +116,7 @@ class ExactEngine final : public Engine {
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
   void set_slot(int slot, double t, SlotKind kind, int pair, double tau = 0.0);
-  int next_slot() const { return tree_[1]; }
+  int next_slot() const { return tree_[1].slot; }
 
   int n_;
   double d_, g_, k_over_m_, D_, tau_c_;
@@ -133,17 +133,22 @@ class ExactEngine final : public Engine {
   double floor_s_ = 0, floor_t_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
 
   std::vector<Slot> slots_;
-  std::vector<int> tree_;
+  struct TreeNode {
+    double t;  // the earliest slot time below this node (a leaf: its slot's time)
+    int slot;  // and its slot
+  };
+  std::vector<TreeNode> tree_;
   int leaves_ = 1;
 
   double now_ = 0;
   std::uint64_t same_time_events_ = 0;
   double last_event_t_ = 0;
-  EngineCounters counters_;
+  mutable EngineCounters counters_;
 
   mutable ChainState state_;
   mutable bool state_valid_ = false;
   mutable std::vector<double> sx_, sxd_, sv_, sy_, syd_, sv2_, shq_;  // scratch
+  mutable std::vector<double> sy4_[4], sx4_[4];  // searches: derivatives 0..3 of modes and overlaps
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
   struct ModeCache {
