@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -165,4 +167,25 @@ TEST_F(Cli, HelpNamesEveryParameterAndExitsZero) {
   for (const char* flag : {"--N", "--e", "--k", "--T0", "--T ", "--transient", "--seed", "--engine", "--json", "--db", "--config"})
     EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
   EXPECT_EQ(run("").exit_code, 2);  // no subcommand
+}
+
+TEST_F(Cli, TheoryPrintsTheClosedFormsAsTableAndJson) {
+  const CliResult table = run("theory --N 2,3 --e 0.05");
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_NE(table.out.find("0.171573"), std::string::npos);  // e_c^wall(2) = 3 - 2 sqrt 2
+  EXPECT_NE(table.out.find("0.0976563"), std::string::npos);  // q(0.05) = 25/256
+  const CliResult js = run("theory --N 3 --e 0.05,0.5 --json");
+  ASSERT_EQ(js.exit_code, 0);
+  const auto j = nlohmann::json::parse(js.out);
+  EXPECT_NEAR(j["per_N"][0]["ec_free"].get<double>(), 7.0 - 4.0 * std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(j["per_e"][0]["f"].get<double>(), 21.0 / 32.0, 1e-13);
+  EXPECT_TRUE(j["per_e"][1]["q"].is_null());  // no three-body collapse at e = 0.5
+  EXPECT_EQ(run("theory --json out.json").exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "out.json"));
+  for (const char* bad : {"theory --N 0", "theory --e 1", "theory --e -0.1", "theory --N 2,x"}) {
+    const CliResult r = run(std::string(bad) + " --json bad.json");
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.json")) << bad;
+  }
 }

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "cli/run_command.hpp"
+#include "cli/theory_command.hpp"
 #include "version.hpp"
 
 int main(int argc, char** argv) {
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", granchain::code_version());
   app.require_subcommand(1);
   granchain::RunCommand run(app);
+  granchain::TheoryCommand theory(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -24,11 +26,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string msg = e.what();
     std::replace(msg.begin(), msg.end(), '\n', ' ');
-    fmt::print(stderr, "granchain: error: {} (see granchain {} --help)\n", msg, run.selected() ? "run" : "");
+    const char* sub = run.selected() ? "run " : theory.selected() ? "theory " : "";
+    fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, sub);
     return granchain::kExitBadInput;
   }
   try {
     if (run.selected()) return run.execute();
+    if (theory.selected()) return theory.execute();
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return 1;

@@ -10,6 +10,7 @@
 
 #include "cli/config_file.hpp"
 #include "cli/input_error.hpp"
+#include "cli/output_file.hpp"
 #include "cli/run_options.hpp"
 #include "cli/run_report.hpp"
 #include "engines/engine.hpp"
@@ -87,24 +88,6 @@ class ProgressPrinter {
   bool tty_;
   bool printed_ = false;
 };
-
-// Writes the whole file or nothing: a temporary file renamed into place.
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << text;
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(fmt::format("--json: cannot write '{}'", path));
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(fmt::format("--json: cannot write '{}'", path));
-  }
-}
 
 }  // namespace
 

@@ -1,0 +1,10 @@
+#pragma once
+#include <string>
+
+namespace granchain {
+
+// Writes the whole file or nothing: a temporary file renamed into place. Throws
+// std::runtime_error "<option>: cannot write '<path>'" on failure.
+void write_file_atomically(const std::string& path, const std::string& text, const std::string& option = "--json");
+
+}  // namespace granchain
