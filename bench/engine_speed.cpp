@@ -103,8 +103,8 @@ int main(int argc, char** argv) {
         "{:>6.0e} {:>5} {:>5} | {:>8.2f} ± {:<4.2f} {:>9.3f} {:>9.0f} {:>11.0f} {:>12.2f} | {:>10.2f} {:>12} {:>12.0f} | "
         "{:>7.0f}x\n",
         w.k, w.e, w.T, ex.n_coll, ex.n_coll_err, ex.wall, ns_per_collision, engine.ns, engine.search_steps, ref_wall,
-               extrapolate ? fmt::format("T={} x{:.0f}", short_T, ex.simulated / ref.simulated) : "measured",
-               steps_per_collision, ref_wall / ex.wall);
+        extrapolate ? fmt::format("T={} x{:.0f}", short_T, ex.simulated / ref.simulated) : "measured",
+        steps_per_collision, ref_wall / ex.wall);
     std::fflush(stdout);
   }
   fmt::print(

@@ -1,5 +1,8 @@
 #include "cli/output_file.hpp"
 
+#include "cli/input_error.hpp"
+#include "store/results_store.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -8,6 +11,11 @@
 #include <stdexcept>
 
 namespace granchain {
+
+void check_output_file(const std::string& path, const std::string& option) {
+  const std::string reason = cannot_create_file_reason(path);
+  if (!reason.empty()) throw InputError(option + ": " + reason);
+}
 
 void write_file_atomically(const std::string& path, const std::string& text, const std::string& option) {
   const std::string tmp = path + ".tmp" + std::to_string(::getpid());

@@ -109,10 +109,7 @@ int RunCommand::execute() {
     opts = resolve_run_options(raw);
     opts.use_db = !impl.no_db;
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
-    if (json_requested && !json_stdout) {
-      const std::string reason = cannot_create_file_reason(impl.json_path);
-      if (!reason.empty()) throw InputError("--json: " + reason);
-    }
+    if (json_requested && !json_stdout) check_output_file(impl.json_path);
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;

@@ -10,7 +10,6 @@
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
 #include "cli/run_command.hpp"
-#include "store/results_store.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {
@@ -113,10 +112,7 @@ int TheoryCommand::execute() {
     for (double e : impl.e) {
       if (!(e > 0 && e < 1)) throw InputError(fmt::format("--e: {} is out of range; valid: 0 < e < 1", e));
     }
-    if (json_requested && !json_stdout) {
-      const std::string reason = cannot_create_file_reason(impl.json_path);
-      if (!reason.empty()) throw InputError("--json: " + reason);
-    }
+    if (json_requested && !json_stdout) check_output_file(impl.json_path);
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;

@@ -1,6 +1,5 @@
 #include "engines/cluster_modes.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -23,7 +22,7 @@ ModeConstants::ModeConstants(double beta_, double omega0_squared)
   }
   const double omega0 = std::sqrt(omega0_squared);
   b2 = 2.0 * beta + omega0;
-  b3 = 2.0 * beta * b2 + omega0_squared;
+  const double b3 = 2.0 * beta * b2 + omega0_squared;
   b4 = 2.0 * beta * b3 + omega0_squared * b2;
 }
 
@@ -91,7 +90,6 @@ ClusterModeTable::ClusterModeTable(int n_, double k_over_m, double D) : n(n_), M
     const double s = std::sin((j + 1) * std::numbers::pi / (2.0 * n));
     const double lambda = 4.0 * s * s;
     modes.emplace_back(0.5 * D * lambda, k_over_m * lambda);
-    omega_max = std::max(omega_max, std::sqrt(k_over_m * lambda));
     for (int i = 0; i < M; ++i) S[i * M + j] = s_max * std::sin((i + 1) * (j + 1) * std::numbers::pi / n);
   }
   // z_p - z_com = const + sum_i x_i [ (n-1-i)/n - [i < p] ]  (z_{i+1} = z_i + d - x_i).

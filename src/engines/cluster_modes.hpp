@@ -23,7 +23,7 @@ struct ModeConstants {
   ModeConstants() = default;
   ModeConstants(double beta, double omega0_squared);
   double beta = 0, omega0_sq = 0, w = 0;  // w = sqrt(|omega0^2 - beta^2|)
-  double b2 = 0, b3 = 0, b4 = 0;
+  double b2 = 0, b4 = 0;
   ModeKind kind = ModeKind::Under;
 
   // y(t), y'(t) from y(0) = y0, y'(0) = v0, exactly.
@@ -53,7 +53,6 @@ struct ClusterModeTable {
   std::vector<ModeConstants> modes;  // mode j
   std::vector<double> bottom, top;   // z_1 - z_com and z_n - z_com per unit y_j (constant part aside)
   double s_max = 0;                  // sqrt(2/n) >= |S_ij|
-  double omega_max = 0;              // largest omega0_j
 
   // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x).
   void to_overlaps(const double* y, double* x) const;

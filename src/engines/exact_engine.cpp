@@ -129,7 +129,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   gap_t_.assign(n_, t);
   gap_ua_.assign(n_, 0.0);
   gap_ub_.assign(n_, 0.0);
-  for (auto* s : {&sx_, &sxd_, &sv_, &sy_, &syd_, &sv2_}) s->assign(n_, 0.0);
+  for (auto* s : {&sx_, &sxd_, &sv_, &sv2_}) s->assign(n_, 0.0);
   for (int k = 0; k < 4; ++k) {
     sy4_[k].assign(n_, 0.0);
     sx4_[k].assign(n_, 0.0);
@@ -291,8 +291,6 @@ void ExactEngine::rebase_gap(int i, double t) {
   if (gap_t_[i] != t || t0_[b] == t) gap_ub_[i] = edge_u(b, false, t);
   gap_t_[i] = t;
 }
-
-double ExactEngine::floor_height_at(double t) const { return floor_s_ + edge_u(0, false, t) - floor_u_; }
 
 void ExactEngine::sync_floor(double t) {
   const double u = edge_u(0, false, t);
@@ -521,8 +519,10 @@ void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink)
   // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t).
   double* x = sx_.data();
   double* v = sv_.data();
-  modes_at(lo, tau, sy_.data(), syd_.data());
-  cluster_state_local(lo, tau, sy_.data(), syd_.data(), x, sxd_.data(), v);
+  double* y = sy4_[0].data();
+  double* yd = sy4_[1].data();
+  modes_at(lo, tau, y, yd);
+  cluster_state_local(lo, tau, y, yd, x, sxd_.data(), v);
   const int r = pair - lo;
   const double speed = std::abs(sxd_[r]);
   form_cluster(lo, pair, t, x, v);

@@ -91,7 +91,6 @@ class ExactEngine final : public Engine {
   double gap_at(int i, double t) const;
   void sync_gap(int i, double t);    // move the reference of open gap i to t (clusters unchanged)
   void rebase_gap(int i, double t);  // after a neighbour re-formed at t: new displacement origin
-  double floor_height_at(double t) const;
   void sync_floor(double t);
   void rebase_floor(double t);
 
@@ -109,7 +108,6 @@ class ExactEngine final : public Engine {
   void merge(int pair, double t, EventSink& sink);
   void floor_hit(double t, EventSink& sink);
   void refresh_cluster(int lo, double t);
-  void after_reform(int lo, double t);  // rebase and re-predict what depends on cluster lo
 
   // --- schedule: tournament tree over 2N slots (N clusters, N-1 gaps, the floor) ---
   int cluster_slot(int lo) const { return lo; }
@@ -147,7 +145,7 @@ class ExactEngine final : public Engine {
 
   mutable ChainState state_;
   mutable bool state_valid_ = false;
-  mutable std::vector<double> sx_, sxd_, sv_, sy_, syd_, sv2_, shq_;  // scratch
+  mutable std::vector<double> sx_, sxd_, sv_, sv2_, shq_;  // scratch
   mutable std::vector<double> sy4_[4], sx4_[4];  // searches: derivatives 0..3 of modes and overlaps
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
