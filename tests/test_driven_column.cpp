@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "simulation/driven_run.hpp"
@@ -106,6 +107,20 @@ TEST(DrivenColumn, ElasticColumnIsInGibbsEquilibrium) {
   expect_gibbs_equilibrium(r, eq);
   // The errors are small enough for this to be a sharp test: 2% on n_coll or better.
   EXPECT_LT(r.n_coll.error, 0.02 * eq.n_coll);
+}
+
+// The hard-sphere engine (k = infinity) samples the k -> infinity limit of the same Gibbs measure:
+// exponential gaps of mean kT0 / W_j and the hard-rod collision rates.
+TEST(DrivenColumn, HardSphereElasticColumnIsInGibbsEquilibrium) {
+  RunSpec s = spec_for(3, 1.0, std::numeric_limits<double>::infinity(), 2e4, 7);
+  s.engine.name = "hard";
+  const RunResult r = run_driven_column(s);
+  ChainParameters hard_limit = s.params;
+  hard_limit.k = 1e14;  // the equilibrium integrals at k = 1e14 differ from k = infinity by ~1e-7
+  const ElasticColumnEquilibrium eq = elastic_column_equilibrium(hard_limit);
+  expect_gibbs_equilibrium(r, eq);
+  EXPECT_LT(r.n_coll.error, 0.02 * eq.n_coll);
+  EXPECT_EQ(r.law.tau_c, 0.0);
 }
 
 // Dissipation far from collapse (N(1-e) = 0.5 << 2.6): energy enters at the floor and is lost on

@@ -342,7 +342,7 @@ namespace {
 RunResult grid_run(int N, double e, double k, const std::string& engine, double dt_factor, std::uint64_t seed) {
   RunSpec spec;
   spec.params = ChainParameters{.N = N, .k = k, .e = e};
-  spec.engine = EngineChoice{engine, dt_factor};
+  spec.engine = EngineChoice{.name = engine, .dt_factor = dt_factor};
   spec.T = N < 10 ? (k > 1e5 ? 1000.0 : 5000.0) : (k > 1e5 ? 200.0 : 500.0);
   spec.transient = 0.1 * spec.T;
   spec.seed = seed;

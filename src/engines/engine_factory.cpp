@@ -8,7 +8,7 @@
 namespace granchain {
 
 const std::vector<std::string>& engine_names() {
-  static const std::vector<std::string> names{"exact", "reference", "reference-located"};
+  static const std::vector<std::string> names{"exact", "reference", "reference-located", "hard"};
   return names;
 }
 
@@ -19,6 +19,7 @@ std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParam
                                               RungeKuttaOptions{choice.dt_factor, choice.name != "reference"});
   }
   if (choice.name == "exact") return std::make_unique<ExactEngine>(p, initial, floor);
+  if (choice.name == "hard") return std::make_unique<HardSphereEngine>(p, initial, floor, choice.hard);
   throw std::invalid_argument("unknown engine '" + choice.name + "'");
 }
 

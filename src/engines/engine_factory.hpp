@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engines/engine.hpp"
+#include "engines/hard_sphere_engine.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 
@@ -12,7 +13,11 @@ namespace granchain {
 struct EngineChoice {
   std::string name = "exact";  // one of engine_names(); the first is the default
   double dt_factor = 100.0;        // time-stepped engines: dt = tau_c / dt_factor
+  HardSphereOptions hard;          // the hard-sphere engine (k = infinity): TC model, collapse watch
 };
+
+// True for engines that treat the spheres as hard (k = infinity, instantaneous collisions).
+inline bool is_hard_sphere_engine(const std::string& name) { return name == "hard"; }
 
 // Names accepted by make_engine, the default first.
 const std::vector<std::string>& engine_names();

@@ -23,6 +23,18 @@ class EventSink {
  public:
   virtual ~EventSink() = default;
   virtual void on_event(const Event& event) = 0;
+
+  // An observer may end an advance at the event it was just handed (a stop rule, a window): the
+  // engine then returns from advance_to with time() at that event (a time-stepped engine: at the
+  // end of the step in which it happened, after reporting that step's other events).
+  bool stop_requested() const { return stop_; }
+  void clear_stop() { stop_ = false; }
+
+ protected:
+  void request_stop() { stop_ = true; }
+
+ private:
+  bool stop_ = false;
 };
 
 // Discards every event.

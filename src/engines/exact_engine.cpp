@@ -164,12 +164,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   }
   rebase_floor(t);
 
-  leaves_ = 1;
-  while (leaves_ < 2 * n_) leaves_ *= 2;
-  slots_.assign(leaves_, Slot{kInf, SlotKind::None, 0});
-  tree_.assign(2 * leaves_, TreeNode{kInf, 0});
-  for (int s = 0; s < leaves_; ++s) tree_[leaves_ + s].slot = s;
-  for (int node = leaves_ - 1; node >= 1; --node) tree_[node] = tree_[2 * node];
+  slots_.assign(2 * n_, Slot{kInf, SlotKind::None, 0});
+  queue_.reset(2 * n_);
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) predict_cluster(lo);
   for (int i = 0; i + 1 < n_; ++i) {
     if (lo_of_[i] != lo_of_[i + 1]) predict_gap(i);
@@ -574,7 +570,7 @@ void ExactEngine::floor_hit(double t, EventSink& sink) {
   if (hi + 1 < n_) sync_gap(hi, t);
   double* v = sv_.data();
   cluster_state(0, t, sx_.data(), sxd_.data(), v);
-  const double speed = floor_->next_speed();
+  const double speed = floor_->bounce(-v[0]);
   if (!std::isfinite(speed) || speed < 0) {
     throw UnphysicalStateError(t, 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t));
   }
@@ -649,25 +645,22 @@ void ExactEngine::handle(int slot, EventSink& sink) {
 
 void ExactEngine::advance_to(double t, EventSink& sink) {
   if (!(t >= now_)) throw std::logic_error("ExactEngine::advance_to: time must not go back");
-  while (tree_[1].t <= t) handle(next_slot(), sink);
+  while (queue_.next_time() <= t) {
+    const double t_event = queue_.next_time();
+    handle(next_slot(), sink);
+    if (sink.stop_requested()) {
+      now_ = t_event;
+      state_valid_ = false;
+      return;
+    }
+  }
   now_ = t;
   state_valid_ = false;
 }
 
 void ExactEngine::set_slot(int slot, double t, SlotKind kind, int pair, double tau) {
   slots_[slot] = Slot{t, kind, pair, tau};
-  int node = leaves_ + slot;
-  if (tree_[node].t == t) return;  // same time (often +inf again): the tree stays as it is
-  tree_[node].t = t;
-  // Each node holds the earliest of its two children (the left one on a tie). Above a node whose
-  // winner and time did not change, nothing changes.
-  for (node >>= 1; node >= 1; node >>= 1) {
-    const TreeNode& a = tree_[2 * node];
-    const TreeNode& b = tree_[2 * node + 1];
-    const TreeNode& w = b.t < a.t ? b : a;
-    if (tree_[node].slot == w.slot && tree_[node].t == w.t) break;
-    tree_[node] = w;
-  }
+  queue_.set(slot, t);
 }
 
 // ----------------------------------------------------------------------------------------------

@@ -20,6 +20,7 @@
 
 #include "engines/cluster_modes.hpp"
 #include "engines/engine.hpp"
+#include "engines/event_queue.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 
@@ -114,7 +115,7 @@ class ExactEngine final : public Engine {
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
   void set_slot(int slot, double t, SlotKind kind, int pair, double tau = 0.0);
-  int next_slot() const { return tree_[1].slot; }
+  int next_slot() const { return queue_.next_slot(); }
 
   int n_;
   double d_, g_, k_over_m_, D_, tau_c_;
@@ -131,12 +132,7 @@ class ExactEngine final : public Engine {
   double floor_s_ = 0, floor_t_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
 
   std::vector<Slot> slots_;
-  struct TreeNode {
-    double t;  // the earliest slot time below this node (a leaf: its slot's time)
-    int slot;  // and its slot
-  };
-  std::vector<TreeNode> tree_;
-  int leaves_ = 1;
+  EventQueue queue_;
 
   double now_ = 0;
   std::uint64_t same_time_events_ = 0;

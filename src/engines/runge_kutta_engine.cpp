@@ -141,8 +141,8 @@ void RungeKuttaEngine::report_switches(double t0, double h, EventSink& sink) {
   if (floor_ != nullptr && z[0] < floor_z_) {
     const double zo = z_old_[0];
     const double frac = zo > floor_z_ ? std::clamp((zo - floor_z_) / (zo - z[0]), 0.0, 1.0) : 0.0;
-    const double speed = floor_->next_speed();
     const double r = (1.0 - frac) * h;
+    const double speed = floor_->bounce(-(v[0] + g_ * r));  // arriving speed, back-dated by free fall
     v[0] = speed - g_ * r;
     z[0] = floor_z_ + speed * r - 0.5 * g_ * r * r;
     pending_.push_back({EventKind::FloorHit, t0 + frac * h, 0, speed});
@@ -188,6 +188,10 @@ void RungeKuttaEngine::advance_to(double t, EventSink& sink) {
   for (std::uint64_t j = 0; j < n_full; ++j) {
     const double t0 = t_start + static_cast<double>(j) * dt_;
     step(t0, dt_, sink);
+    if (sink.stop_requested()) {
+      state_.t = t0 + dt_;
+      return;
+    }
   }
   const double t_done = t_start + static_cast<double>(n_full) * dt_;
   const double rest = t - t_done;

@@ -16,6 +16,11 @@ double contact_time(double k, double D, double m) {
 
 ContactLaw contact_law(const ChainParameters& p) {
   ContactLaw c;
+  if (std::isinf(p.k)) {  // hard spheres: instantaneous contacts of infinite stiffness
+    c.k_over_m = c.D = p.k;
+    c.tau_c = 0.0;
+    return c;
+  }
   c.k_over_m = p.k / p.m;
   c.D = damping_constant(p.k, p.e, p.m);
   c.tau_c = contact_time(p.k, c.D, p.m);

@@ -10,11 +10,12 @@
 
 namespace granchain {
 
-// Source of outgoing speeds at floor hits; engines own none of the randomness.
+// What the floor does to particle 1 when it arrives; engines own none of the randomness.
 class FloorDrive {
  public:
   virtual ~FloorDrive() = default;
-  virtual double next_speed() = 0;
+  // Upward speed of particle 1 leaving the floor, given its downward speed on arrival.
+  virtual double bounce(double incoming_speed) = 0;
 };
 
 // Flux-weighted Maxwell distribution p(v) = (m v / kT0) exp(-m v^2 / (2 kT0)), v > 0
@@ -22,7 +23,8 @@ class FloorDrive {
 class ThermalFloor final : public FloorDrive {
  public:
   ThermalFloor(double kT0, double m, std::uint64_t seed);
-  double next_speed() override;
+  double next_speed();
+  double bounce(double) override { return next_speed(); }
 
  private:
   double two_kT_over_m_;
@@ -33,12 +35,26 @@ class ThermalFloor final : public FloorDrive {
 class ScriptedFloor final : public FloorDrive {
  public:
   explicit ScriptedFloor(std::vector<double> speeds) : speeds_(std::move(speeds)) {}
-  double next_speed() override;  // throws std::out_of_range when the script is used up
+  double next_speed();  // throws std::out_of_range when the script is used up
+  double bounce(double) override { return next_speed(); }
   std::size_t used() const { return next_; }
 
  private:
   std::vector<double> speeds_;
   std::size_t next_ = 0;
+};
+
+// A hard wall with restitution coefficient r: the particle leaves with r times the speed it
+// arrived with. r = 1: an elastic wall. r = e: the wall of Bernu and Mazighi's spheres thrown
+// against a wall (paper Sec. II.C), which acts on particle 1 as its mirror image would, so that
+// N spheres on the wall are half of a symmetric 2N-sphere chain in free space (Eq. symmetry).
+class Wall final : public FloorDrive {
+ public:
+  explicit Wall(double restitution = 1.0) : r_(restitution) {}
+  double bounce(double incoming_speed) override { return r_ * incoming_speed; }
+
+ private:
+  double r_;
 };
 
 // CDF of the thermal floor's speed distribution, for tests and analysis.

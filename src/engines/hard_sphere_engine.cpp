@@ -1,0 +1,236 @@
+#include "engines/hard_sphere_engine.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace granchain {
+
+namespace {
+constexpr double kNever = EventQueue::kNever;
+// Initial overlaps smaller than this (relative to d) are round-off of a touching start.
+constexpr double kTouchTolerance = 1e-12;
+}  // namespace
+
+HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
+                                   HardSphereOptions options)
+    : n_(p.N), d_(p.d), g_(p.g), e_(p.e), floor_(floor), options_(options) {
+  if (n_ < 1 || static_cast<int>(initial.z.size()) != n_ || static_cast<int>(initial.v.size()) != n_) {
+    throw std::invalid_argument("HardSphereEngine: the initial state must hold N positions and velocities");
+  }
+  if (!(e_ > 0 && e_ <= 1)) throw std::invalid_argument("HardSphereEngine: e must lie in (0, 1]");
+  if (!(options_.tc >= 0) || options_.collapse_collisions < 2 || !(options_.collapse_time > 0)) {
+    throw std::invalid_argument("HardSphereEngine: tc >= 0, collapse_collisions >= 2, collapse_time > 0");
+  }
+  const double t = initial.t;
+  now_ = t;
+  for (int i = 0; i < n_; ++i) {
+    if (!std::isfinite(initial.z[i]) || !std::isfinite(initial.v[i])) {
+      throw UnphysicalStateError(t, i + 1, i + 1, fmt::format("non-finite initial state of particle {}", i + 1));
+    }
+  }
+  u_ = initial.v;
+  tu_.assign(n_, t);
+  gap_s_.assign(std::max(n_ - 1, 0), 0.0);
+  gap_t_.assign(std::max(n_ - 1, 0), t);
+  rel_.assign(std::max(n_ - 1, 0), 0.0);
+  for (int i = 0; i + 1 < n_; ++i) {
+    double s = initial.z[i + 1] - initial.z[i] - d_;
+    if (s < 0) {
+      if (s < -kTouchTolerance * d_) {
+        throw UnphysicalStateError(t, i + 1, i + 2,
+                                   fmt::format("hard spheres {} and {} overlap in the initial state by {:.3g} d",
+                                               i + 1, i + 2, -s / d_));
+      }
+      s = 0;
+    }
+    gap_s_[i] = s;
+    rel_[i] = initial.v[i + 1] - initial.v[i];
+  }
+  floor_h_ = initial.z[0] - 0.5 * d_;
+  floor_t_ = t;
+  if (floor_ != nullptr && floor_h_ < 0) {
+    if (floor_h_ < -kTouchTolerance * d_) {
+      throw UnphysicalStateError(t, 1, 1, "particle 1 starts below the floor");
+    }
+    floor_h_ = 0;
+  }
+  last_collision_.assign(n_, -std::numeric_limits<double>::infinity());
+  ring_t_.assign(options_.collapse_collisions, 0.0);
+  ring_pair_.assign(options_.collapse_collisions, 0);
+  queue_.reset(n_);
+  for (int i = 0; i + 1 < n_; ++i) predict_gap(i);
+  predict_floor();
+}
+
+// ----------------------------------------------------------------------------------------------
+// Gaps and the floor: values at reference times, moved forward only when a velocity changes.
+
+void HardSphereEngine::sync_gap(int i, double t) {
+  gap_s_[i] = std::max(0.0, gap_at(i, t));
+  gap_t_[i] = t;
+}
+
+void HardSphereEngine::sync_floor(double t) {
+  const double tau = t - floor_t_;
+  floor_h_ += tau * (velocity(0, floor_t_) - 0.5 * g_ * tau);
+  if (floor_ != nullptr) floor_h_ = std::max(0.0, floor_h_);
+  floor_t_ = t;
+}
+
+// Gap i closes when s + r (t - t_i) = 0 with r = v_{i+1} - v_i < 0.
+void HardSphereEngine::predict_gap(int i) {
+  const double r = rel_[i];
+  const double t = r < 0 ? std::max(now_, gap_t_[i] + gap_s_[i] / -r) : kNever;
+  queue_.set(i, t);
+}
+
+// Particle 1 reaches the floor when h + w tau - g tau^2 / 2 = 0 (w its velocity at floor_t_): the
+// positive root, in the form without cancellation for either sign of w.
+void HardSphereEngine::predict_floor() {
+  if (floor_ == nullptr) return;
+  const double h = floor_h_;
+  const double w = velocity(0, floor_t_);
+  double tau = kNever;
+  if (g_ > 0) {
+    const double root = std::sqrt(w * w + 2.0 * g_ * h);
+    tau = w > 0 ? (w + root) / g_ : (root - w > 0 ? 2.0 * h / (root - w) : 0.0);
+  } else if (w < 0) {
+    tau = h / -w;
+  }
+  queue_.set(n_ - 1, tau == kNever ? kNever : std::max(now_, floor_t_ + tau));
+}
+
+// ----------------------------------------------------------------------------------------------
+// Events
+
+// Binary collision of pair (i, i+1): momentum conserved, v'_{i+1} - v'_i = -e (v_{i+1} - v_i)
+// (the restitution law that the soft contact produces after tau_c, paper Sec. II.B).
+void HardSphereEngine::collide(int i, double t, EventSink& sink) {
+  if (i > 0) sync_gap(i - 1, t);
+  if (i + 2 < n_) sync_gap(i + 1, t);
+  if (i == 0) sync_floor(t);
+  const double r = rel_[i];  // < 0: approaching
+  double e = e_;
+  if (options_.tc > 0 && (t - last_collision_[i] < options_.tc || t - last_collision_[i + 1] < options_.tc)) {
+    e = 1.0;  // TC model
+    ++tc_elastic_;
+  }
+  const double delta = -0.5 * (1.0 + e) * r;  // impulse per unit mass, > 0
+  const double vi = velocity(i, t) - delta;
+  const double vj = velocity(i + 1, t) + delta;
+  u_[i] = vi;
+  u_[i + 1] = vj;
+  tu_[i] = tu_[i + 1] = t;
+  gap_s_[i] = 0.0;
+  gap_t_[i] = t;
+  rel_[i] = -e * r;
+  if (i > 0) rel_[i - 1] -= delta;      // v_i went down by delta
+  if (i + 2 < n_) rel_[i + 1] -= delta;  // v_{i+1} went up by delta
+  last_collision_[i] = last_collision_[i + 1] = t;
+  if (!std::isfinite(vi) || !std::isfinite(vj)) {
+    throw UnphysicalStateError(t, i + 1, i + 2, fmt::format("non-finite velocities after a collision at t = {:.10g}", t));
+  }
+  ++counters_.contact_ends;
+  sink.on_event({EventKind::ContactBegin, t, i, -r});
+  sink.on_event({EventKind::ContactEnd, t, i, -e * r});
+  if (i > 0) predict_gap(i - 1);
+  predict_gap(i);
+  if (i + 2 < n_) predict_gap(i + 1);
+  if (i == 0) predict_floor();
+  watch_collapse(t, i);
+}
+
+void HardSphereEngine::floor_hit(double t, EventSink& sink) {
+  if (n_ > 1) sync_gap(0, t);
+  const double v_in = velocity(0, t);
+  const double speed = floor_->bounce(std::max(0.0, -v_in));
+  if (!std::isfinite(speed) || speed < 0) {
+    throw UnphysicalStateError(t, 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t));
+  }
+  u_[0] = speed;
+  tu_[0] = t;
+  if (n_ > 1) rel_[0] -= speed - v_in;
+  floor_h_ = 0.0;
+  floor_t_ = t;
+  last_collision_[0] = t;
+  ++counters_.floor_hits;
+  sink.on_event({EventKind::FloorHit, t, 0, speed});
+  if (n_ > 1) predict_gap(0);
+  predict_floor();
+  watch_collapse(t, -1);
+}
+
+void HardSphereEngine::watch_collapse(double t, int pair) {
+  const std::size_t m = ring_t_.size();
+  ring_t_[ring_next_] = t;
+  ring_pair_[ring_next_] = pair;
+  ring_next_ = (ring_next_ + 1) % m;
+  ++collisions_;
+  if (collisions_ < m) return;
+  const double span = t - ring_t_[ring_next_];  // ring_next_ now holds the oldest of the last m
+  if (span >= options_.collapse_time) return;
+  const auto [lo, hi] = std::minmax_element(ring_pair_.begin(), ring_pair_.end());
+  const bool floor_involved = *lo < 0;
+  const int first = floor_involved ? 1 : *lo + 1;
+  const int last = floor_involved && *hi < 0 ? 1 : *hi + 2;
+  throw InelasticCollapseError(
+      t, first, last, collisions_,
+      fmt::format("inelastic collapse at t = {:.12g}: {} collisions of particles {}..{}{} within {:.3g} "
+                  "(after {} collisions in all); hard spheres collide infinitely often here. "
+                  "Use the TC model (tc > 0) or a soft engine to continue",
+                  t, m, first, last, floor_involved ? " and the floor" : "", span, collisions_));
+}
+
+void HardSphereEngine::advance_to(double t, EventSink& sink) {
+  if (!(t >= now_)) throw std::logic_error("HardSphereEngine::advance_to: time must not go back");
+  while (queue_.next_time() <= t) {
+    const int slot = queue_.next_slot();
+    now_ = queue_.next_time();
+    ++counters_.steps;
+    if (slot == n_ - 1 && floor_ != nullptr) {
+      floor_hit(now_, sink);
+    } else {
+      collide(slot, now_, sink);
+    }
+    if (sink.stop_requested()) {
+      state_valid_ = false;
+      return;
+    }
+  }
+  now_ = t;
+  state_valid_ = false;
+}
+
+// ----------------------------------------------------------------------------------------------
+// Observables
+
+const ChainState& HardSphereEngine::state() const {
+  if (state_valid_) return state_;
+  state_.t = now_;
+  state_.z.resize(n_);
+  state_.v.resize(n_);
+  const double tau = now_ - floor_t_;
+  state_.z[0] = 0.5 * d_ + floor_h_ + tau * (velocity(0, floor_t_) - 0.5 * g_ * tau);
+  for (int i = 0; i < n_; ++i) state_.v[i] = velocity(i, now_);
+  for (int i = 0; i + 1 < n_; ++i) state_.z[i + 1] = state_.z[i] + d_ + gap_at(i, now_);
+  state_valid_ = true;
+  return state_;
+}
+
+std::vector<double> HardSphereEngine::gaps() const {
+  std::vector<double> s(std::max(n_ - 1, 0));
+  for (int i = 0; i + 1 < n_; ++i) s[i] = gap_at(i, now_);
+  return s;
+}
+
+double HardSphereEngine::mechanical_energy_per_mass() const {
+  const ChainState& s = state();
+  double E = 0;
+  for (int i = 0; i < n_; ++i) E += 0.5 * s.v[i] * s.v[i] + g_ * (s.z[i] - 0.5 * d_);
+  return E;
+}
+
+}  // namespace granchain

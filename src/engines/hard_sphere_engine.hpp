@@ -1,0 +1,110 @@
+#pragma once
+// Hard-sphere engine: the k -> infinity limit at fixed e (paper Sec. II.B). Collisions are
+// instantaneous and conserve momentum; the relative velocity of the pair reverses and shrinks by
+// e, v'_{i+1} - v'_i = -e (v_{i+1} - v_i). Between collisions every particle falls freely, so
+// gaps change linearly in time (gravity cancels in differences) and particle 1 flies on a
+// parabola above the floor. Each collision is reported as a ContactBegin and a ContactEnd at the
+// same instant, so the observers of the soft engines count the same things.
+//
+// Inelastic collapse — infinitely many collisions in a finite time (Sec. II.C) — is a real
+// property of this model, not a numerical accident; the engine detects it and stops with an
+// InelasticCollapseError that says when, where and after how many collisions. The TC model of
+// Luding and McNamara continues past it: a collision of a particle whose previous collision (a
+// floor or wall hit included) lies less than t_c ago is elastic (e = 1).
+//
+// Precision: gaps and relative velocities are stored as such, each gap with its own reference
+// time, and a collision updates the relative velocities from relative velocities only
+// (-e r for the pair, r - Delta for the neighbours), so a collapsing cluster whose gaps and
+// relative speeds shrink geometrically keeps full relative precision until time itself stops
+// resolving the intervals.
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "engines/engine.hpp"
+#include "engines/event_queue.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/floor.hpp"
+
+namespace granchain {
+
+struct HardSphereOptions {
+  // TC model: a collision within tc of the previous collision of either particle is elastic.
+  // 0 switches it off.
+  double tc = 0.0;
+  // Collapse: `collapse_collisions` consecutive collisions (floor and wall hits included)
+  // inside a time span shorter than `collapse_time`.
+  std::uint64_t collapse_collisions = 1000;
+  double collapse_time = 1e-9;
+};
+
+// Inelastic collapse of the hard-sphere model: collisions accumulate in a vanishing time.
+class InelasticCollapseError : public UnphysicalStateError {
+ public:
+  InelasticCollapseError(double t, int first_particle, int last_particle, std::uint64_t collisions,
+                         const std::string& what)
+      : UnphysicalStateError(t, first_particle, last_particle, what), collisions_(collisions) {}
+  // Collisions (floor and wall hits included) since the engine started, the collapse included.
+  std::uint64_t collisions() const { return collisions_; }
+
+ private:
+  std::uint64_t collisions_;
+};
+
+class HardSphereEngine final : public Engine {
+ public:
+  // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
+  // p.k is not used. Neighbours must not overlap in `initial` (touching is allowed).
+  HardSphereEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
+                   HardSphereOptions options = {});
+
+  std::string_view name() const override { return "hard"; }
+  void advance_to(double t, EventSink& sink) override;
+  const ChainState& state() const override;
+  double time() const override { return now_; }
+  EngineCounters counters() const override { return counters_; }
+
+  // Kinetic + gravitational energy per unit mass at time(), z measured from the floor level of
+  // the centres (d/2). For conservation tests.
+  double mechanical_energy_per_mass() const;
+  // Gaps z_{i+1} - z_i - d at time(), straight from the stored gaps (full relative precision).
+  std::vector<double> gaps() const;
+  // Collisions that the TC model made elastic.
+  std::uint64_t elastic_by_tc() const { return tc_elastic_; }
+
+ private:
+  double velocity(int p, double t) const { return u_[p] - g_ * (t - tu_[p]); }
+  double gap_at(int i, double t) const { return gap_s_[i] + rel_[i] * (t - gap_t_[i]); }
+  void sync_gap(int i, double t);
+  void sync_floor(double t);
+  void predict_gap(int i);
+  void predict_floor();
+  void collide(int i, double t, EventSink& sink);
+  void floor_hit(double t, EventSink& sink);
+  void watch_collapse(double t, int pair);  // pair -1: the floor
+
+  int n_;
+  double d_, g_, e_;
+  FloorDrive* floor_;
+  HardSphereOptions options_;
+
+  std::vector<double> u_, tu_;                 // velocity of each particle at its reference time
+  std::vector<double> gap_s_, gap_t_, rel_;    // gap i at gap_t_, and v_{i+1} - v_i (constant)
+  double floor_h_ = 0, floor_t_ = 0;           // z_1 - d/2 at floor_t_
+  std::vector<double> last_collision_;         // TC model: time of each particle's last collision
+  std::uint64_t tc_elastic_ = 0;
+
+  // Collapse watch: times and pairs of the last collapse_collisions collisions (a ring).
+  std::vector<double> ring_t_;
+  std::vector<int> ring_pair_;
+  std::size_t ring_next_ = 0;
+  std::uint64_t collisions_ = 0;
+
+  EventQueue queue_;  // slots 0..n-2: gaps closing; slot n-1: the floor
+  double now_ = 0;
+  EngineCounters counters_;
+  mutable ChainState state_;
+  mutable bool state_valid_ = false;
+};
+
+}  // namespace granchain
