@@ -60,7 +60,9 @@ struct EngineOnly {
 EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   const ChainParameters p{.N = 25, .k = w.k, .e = w.e};
   ThermalFloor floor(p.kT0, p.m, seed);
-  auto engine = make_engine(EngineChoice{.name = "exact"}, p, driven_column_initial_state(p, seed), &floor);
+  EngineChoice exact;
+  exact.name = "exact";
+  auto engine = make_engine(exact, p, driven_column_initial_state(p, seed), &floor);
   NullEventSink none;
   const auto t0 = std::chrono::steady_clock::now();
   engine->advance_to(1.1 * w.T, none);

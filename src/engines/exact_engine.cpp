@@ -15,6 +15,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
 // last proven-safe time, where the search starts again (no physics happens at a refresh).
 constexpr int kMaxIterations = 400;
+// Below this fraction of tau_c the engine does not resolve a function that touches zero within
+// round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
+constexpr double kResolutionSkip = 1e-6;
 // Events allowed at one and the same instant before the engine declares itself stuck.
 constexpr std::uint64_t kMaxSameTimeEvents = 1000000;
 
@@ -91,8 +94,12 @@ double safe_step(const Jet& j, double cap) {
   return h;
 }
 
-// Is a watched function at (or, by round-off, just past) zero and moving down?
-bool at_root(double f, double f1, double f2) { return f <= 0 && (f1 < 0 || (f1 == 0 && f2 <= 0)); }
+// Is a watched function at (or, by round-off, just past) zero and moving down? The first
+// non-zero derivative decides; a function whose value and first three derivatives all vanish is
+// taken as at its root.
+bool at_root(double f, double f1, double f2, double f3) {
+  return f <= 0 && (f1 < 0 || (f1 == 0 && (f2 < 0 || (f2 == 0 && f3 <= 0))));
+}
 
 }  // namespace
 
@@ -119,6 +126,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   hi_.assign(n_, -1);
   lo_of_.assign(n_, 0);
   t0_.assign(n_, t);
+  search_from_.assign(n_, 0.0);
   V0_.assign(n_, 0.0);
   generation_.assign(n_, 0);
   cache_.y.assign(n_, 0.0);
@@ -185,6 +193,7 @@ void ExactEngine::form_cluster(int lo, int hi, double t, const double* x, const 
     vsum += v[p];
   }
   t0_[lo] = t;
+  search_from_[lo] = 0.0;
   V0_[lo] = vsum / n;
   generation_[lo] = ++formations_;
   if (n >= 2) {
@@ -305,7 +314,9 @@ void ExactEngine::rebase_floor(double t) {
 
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
   if (fn.terms == 0) {  // free flight: a line or a parabola, solved in closed form
-    const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 <= 0))
+    // A gap that is zero with no relative velocity and no relative acceleration (two free spheres
+    // touching at equal velocities, in free space) stays zero: no force acts, no contact begins.
+    const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 < 0))
                          ? 0.0
                          : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
@@ -333,7 +344,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         if (it == 0) amplitude += std::abs(a) * sqrtE / std::sqrt(mc.omega0_sq);
       }
     }
-    if (at_root(jet.f, jet.f1, jet.f2)) return {Root::Found, sigma, 0};
+    if (at_root(jet.f, jet.f1, jet.f2, jet.f3)) return {Root::Found, sigma, 0};
     // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
     // f(s) >= f(0) - 2A + c1 s + p2 s^2/2 with A = sum |a_j| sqrt(E_j)/omega0_j. If that parabola
     // stays positive up to sigma_max there is no root (most gaps next to a short contact).
@@ -342,7 +353,13 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
       if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
     }
     const double cap = sigma_max - sigma;
-    const double h = safe_step(jet, cap);
+    double h = safe_step(jet, cap);
+    // Stuck at or below zero but not moving down (a function touching zero from below, within
+    // round-off): no step can be proven root-free, so step over a resolution interval instead.
+    if (h == 0 && jet.f <= 0) {
+      h = std::min(cap, kResolutionSkip * tau_c_);
+      ++counters_.resolution_skips;
+    }
     if (h >= cap) return {Root::None, sigma_max, 0};
     // Converged: the root lies in (sigma + h, sigma + root_upper], an interval of round-off size.
     if (jet.root_upper() - h <= 1e-15 * (sigma + tau_c_)) return {Root::Found, sigma + h, 0};
@@ -359,7 +376,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
   // Mode derivatives 0..3 and the overlaps' (x = S y for each).
   double* y[4] = {sy4_[0].data(), sy4_[1].data(), sy4_[2].data(), sy4_[3].data()};
   double* x[4] = {sx4_[0].data(), sx4_[1].data(), sx4_[2].data(), sx4_[3].data()};
-  double tau = 0.0;
+  double tau = search_from_[lo];
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
     double sum2 = 0.0, sum4 = 0.0;
@@ -388,7 +405,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     int which = -1;
     for (int k = 0; k < functions; ++k) {
       const Jet jk = jet_of(k);
-      if (at_root(jk.f, jk.f1, jk.f2)) return {Root::Found, tau, k};
+      if (at_root(jk.f, jk.f1, jk.f2, jk.f3)) return {Root::Found, tau, k};
       hq[k] = quadratic_step(jk.f, jk.f1, -0.5 * m2);
       if (hq[k] < h) {
         h = hq[k];
@@ -409,6 +426,12 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       }
     }
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
+    if (h == 0 && jet_of(which).f <= 0) {  // touching zero from below within round-off: see first_root
+      h = kResolutionSkip * tau_c_;
+      ++counters_.resolution_skips;
+      tau += h;
+      continue;
+    }
     if (jet_of(which).root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
     tau += h;
   }
@@ -553,6 +576,16 @@ void ExactEngine::merge(int pair, double t, EventSink& sink) {
   x[na - 1] = 0.0;
   const double speed = std::abs(v[na - 1] - v[na]);
   form_cluster(a, hi, t, x, v);
+  // A grazing contact: the gap closed with no approach speed that double precision can resolve
+  // (a cluster's edge pushing a particle that rests against it). The new overlap and its rate are
+  // zero up to the round-off of the cluster's modes, which could end the contact at the instant it
+  // began, again and again. The contact's end is therefore searched from tau = 1e-6 tau_c on, when
+  // the push has made the overlap (omega tau)^2 / 2 ~ 1e-11 of the neighbouring overlaps, far above
+  // that round-off; a contact shorter than that, with an overlap below round-off, is not resolved.
+  if (speed <= 1e-13 * (std::abs(v[na - 1]) + std::abs(v[na]))) {
+    search_from_[a] = kResolutionSkip * tau_c_;
+    ++counters_.grazing_contacts;
+  }
   set_slot(cluster_slot(b), kInf, SlotKind::None, b);
   set_slot(gap_slot(pair), kInf, SlotKind::None, pair);
   if (a > 0) rebase_gap(a - 1, t);

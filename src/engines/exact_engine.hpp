@@ -125,6 +125,7 @@ class ExactEngine final : public Engine {
   std::vector<int> hi_;            // hi_[lo]: top particle of the cluster whose bottom is lo
   std::vector<int> lo_of_;         // lo_of_[p]: bottom particle of p's cluster
   std::vector<double> t0_, V0_;    // formation time and centre-of-mass velocity then
+  std::vector<double> search_from_;  // local time from which the cluster's contact ends are searched
   std::vector<std::uint64_t> generation_;  // distinct for every formation (mode-cache key)
   std::uint64_t formations_ = 0;
   std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1

@@ -1,0 +1,211 @@
+#include "simulation/collapse_run.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+#include "engines/hard_sphere_engine.hpp"
+#include "model/floor.hpp"
+#include "model/random.hpp"
+
+namespace granchain {
+
+const char* setup_name(CollapseSetup s) { return s == CollapseSetup::FreeSpace ? "free_space" : "wall"; }
+const char* rule_name(StopRule r) { return r == StopRule::Ends ? "ends" : "strict"; }
+
+namespace {
+
+// Counts collisions and asks the engine to stop whenever the last open contact closes, so that
+// the driver can test the stop rule in free flight.
+class CollapseObserver final : public EventSink {
+ public:
+  CollapseObserver(int N, int realization, bool keep_records, double wall_restitution)
+      : begin_t_(N, 0.0), begin_speed_(N, 0.0), realization_(realization), keep_(keep_records),
+        wall_r_(wall_restitution) {}
+
+  void on_event(const Event& ev) override {
+    switch (ev.kind) {
+      case EventKind::ContactBegin:
+        ++open_;
+        begin_t_[ev.i] = ev.t;
+        begin_speed_[ev.i] = ev.speed;
+        break;
+      case EventKind::ContactEnd:
+        --open_;
+        ++outcome.particle_collisions;
+        if (keep_) {
+          records.push_back({realization_, outcome.n_tot(), begin_t_[ev.i], ev.t, ev.i + 1, begin_speed_[ev.i], ev.speed});
+        }
+        if (open_ == 0) request_stop();
+        break;
+      case EventKind::FloorHit:
+        ++outcome.wall_hits;
+        if (keep_) records.push_back({realization_, outcome.n_tot(), ev.t, ev.t, 0, ev.speed / wall_r_, ev.speed});
+        if (open_ == 0) request_stop();
+        break;
+    }
+  }
+  int open_contacts() const { return open_; }
+
+  RealizationOutcome outcome;
+  std::vector<CollisionRecord> records;
+
+ private:
+  int open_ = 0;
+  std::vector<double> begin_t_, begin_speed_;
+  int realization_;
+  bool keep_;
+  double wall_r_;
+};
+
+bool stop_rule_holds(const CollapseSpec& spec, const ChainState& s) {
+  const int N = static_cast<int>(s.v.size());
+  if (spec.rule == StopRule::Ends) return s.v[N - 1] - s.v[0] > 0;
+  if (spec.setup == CollapseSetup::Wall && s.v[0] < 0) return false;
+  for (int i = 0; i + 1 < N; ++i)
+    if (s.v[i + 1] < s.v[i]) return false;
+  return true;
+}
+
+bool any_overlap(const ChainState& s, double d) {
+  for (std::size_t i = 0; i + 1 < s.z.size(); ++i)
+    if (s.z[i + 1] - s.z[i] < d) return true;
+  return false;
+}
+
+struct RealizationRun {
+  RealizationOutcome outcome;
+  std::vector<CollisionRecord> records;
+};
+
+RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_records) {
+  ChainParameters p = spec.params;
+  p.g = 0.0;
+  const ChainState initial = collapse_initial_state(spec, r);
+  Wall wall(p.e);  // Bernu and Mazighi's wall: the restitution of the spheres (its mirror image)
+  FloorDrive* floor = spec.setup == CollapseSetup::Wall ? &wall : nullptr;
+  auto engine = make_engine(spec.engine, p, initial, floor);
+  CollapseObserver obs(p.N, r, keep_records, p.e);
+  bool done = !any_overlap(initial, p.d) && stop_rule_holds(spec, initial);
+  try {
+    while (!done) {
+      obs.clear_stop();
+      engine->advance_to(spec.t_max, obs);
+      if (!obs.stop_requested()) {
+        throw UnphysicalStateError(spec.t_max, 1, p.N,
+                                   fmt::format("realisation {}: the stop rule did not hold by t = {:g} "
+                                               "({} collisions)", r, spec.t_max, obs.outcome.n_tot()));
+      }
+      done = obs.open_contacts() == 0 && stop_rule_holds(spec, engine->state());
+    }
+    obs.outcome.t_stop = engine->time();
+  } catch (const InelasticCollapseError& c) {
+    obs.outcome.collapsed = true;
+    obs.outcome.t_stop = c.time();
+  }
+  return {obs.outcome, std::move(obs.records)};
+}
+
+}  // namespace
+
+ChainState collapse_initial_state(const CollapseSpec& spec, int r) {
+  const std::uint64_t seed = derive_seed(spec.seed, static_cast<std::uint64_t>(r));
+  return spec.setup == CollapseSetup::FreeSpace ? free_space_launch_state(spec.params, spec.launch, seed)
+                                                : wall_throw_state(spec.params, spec.launch, seed);
+}
+
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const int R = spec.realizations;
+  CollapseResult res;
+  res.spec = spec;
+  res.law = contact_law(spec.params);
+  res.outcomes.resize(R);
+
+  // Workers take realisations in order; the calling thread hands their records to `log` in
+  // realisation order. With a log, workers stay within a window of the next record to hand over,
+  // so memory stays bounded whatever the lengths of the realisations.
+  const int threads = std::max(1, std::min(spec.threads, R));
+  const int window = 4 * threads;
+  std::vector<std::vector<CollisionRecord>> pending(R);
+  std::vector<char> finished(R, 0);
+  std::mutex mu;
+  std::condition_variable cv;
+  int next = 0, flushed = 0;
+  std::exception_ptr failure;
+
+  auto worker = [&] {
+    for (;;) {
+      int r;
+      {
+        std::unique_lock lock(mu);
+        cv.wait(lock, [&] { return failure || next >= R || !log || next < flushed + window; });
+        if (failure || next >= R) return;
+        r = next++;
+      }
+      try {
+        RealizationRun run = run_realization(spec, r, static_cast<bool>(log));
+        std::lock_guard lock(mu);
+        res.outcomes[r] = run.outcome;
+        pending[r] = std::move(run.records);
+        finished[r] = 1;
+      } catch (...) {
+        std::lock_guard lock(mu);
+        if (!failure) failure = std::current_exception();
+      }
+      cv.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+  {
+    std::unique_lock lock(mu);
+    while (flushed < R) {
+      cv.wait(lock, [&] { return failure || finished[flushed]; });
+      if (failure) break;
+      std::vector<CollisionRecord> records = std::move(pending[flushed]);
+      ++flushed;
+      cv.notify_all();
+      if (log) {
+        lock.unlock();
+        log(records);
+        lock.lock();
+      }
+    }
+  }
+  cv.notify_all();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+
+  // Statistics over the realisations that did not collapse, two-pass, in realisation order.
+  double sum = 0;
+  int n = 0;
+  res.n_tot_min = std::numeric_limits<std::uint64_t>::max();
+  for (const RealizationOutcome& o : res.outcomes) {
+    if (o.collapsed) {
+      ++res.collapsed;
+      continue;
+    }
+    sum += static_cast<double>(o.n_tot());
+    ++n;
+    res.n_tot_min = std::min(res.n_tot_min, o.n_tot());
+    res.n_tot_max = std::max(res.n_tot_max, o.n_tot());
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (n == 0) res.n_tot_min = 0;
+  res.n_tot_mean = n > 0 ? sum / n : nan;
+  double ss = 0;
+  for (const RealizationOutcome& o : res.outcomes)
+    if (!o.collapsed) ss += (static_cast<double>(o.n_tot()) - res.n_tot_mean) * (static_cast<double>(o.n_tot()) - res.n_tot_mean);
+  res.n_tot_error = n > 1 ? std::sqrt(ss / (n - 1) / n) : nan;
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res;
+}
+
+}  // namespace granchain

@@ -1,0 +1,82 @@
+#pragma once
+// Counting the collisions of one inelastic collapse, averaged over random launches (paper
+// Sec. III.D, Fig. ntot): no drive and no gravity; the spheres are launched inward in free space
+// (or thrown against a wall, Sec. II.C), and the collisions are counted until a stop rule holds.
+//
+// Stop rules, checked whenever no contact is open (they concern free flight only):
+//   ends   (the paper's): v_N - v_1 > 0, the end particles separate. Inner pairs may still be
+//          approaching, so collisions may follow that are not counted.
+//   strict: v_{i+1} >= v_i for every neighbouring pair (and, with a wall, v_1 >= 0): no pair
+//          approaches, so in free flight no collision can ever happen again; n_tot is then the
+//          total number of collisions of the launch.
+// A hard-sphere realisation that collapses (infinitely many collisions) is counted as collapsed
+// and left out of the n_tot average; the fraction is reported.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engines/engine_factory.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/collapse_setups.hpp"
+
+namespace granchain {
+
+enum class CollapseSetup { FreeSpace, Wall };
+enum class StopRule { Ends, Strict };
+
+const char* setup_name(CollapseSetup s);  // "free_space", "wall"
+const char* rule_name(StopRule r);        // "ends", "strict"
+
+struct CollapseSpec {
+  ChainParameters params;  // g is ignored (0); k = +inf with the hard-sphere engine
+  EngineChoice engine;
+  CollapseSetup setup = CollapseSetup::FreeSpace;
+  LaunchParameters launch;
+  StopRule rule = StopRule::Ends;
+  int realizations = 1000;
+  std::uint64_t seed = 1;  // realisation r launches from derive_seed(seed, r): the same launches at every k
+  double t_max = 1e7;      // a realisation not stopped by then is an error (it cannot happen in free space)
+  int threads = 1;         // realisations run in parallel; the results do not depend on it
+};
+
+// One collision as recorded for the event-sequence file: pair (i, i+1), 1-based, i = 0 for the wall.
+struct CollisionRecord {
+  int realization;  // 0-based
+  std::uint64_t index;  // 1-based within the realisation
+  double t_begin, t_end;  // contact begins and ends (equal for hard spheres and the wall)
+  int i;
+  double speed_in, speed_out;  // |relative velocity| at the start and the end of the contact
+};
+
+struct RealizationOutcome {
+  std::uint64_t particle_collisions = 0;  // counted contact ends until the stop
+  std::uint64_t wall_hits = 0;
+  bool collapsed = false;  // hard spheres: inelastic collapse detected
+  double t_stop = 0;       // time at which the stop rule held (or the collapse was detected)
+  std::uint64_t n_tot() const { return particle_collisions + wall_hits; }
+};
+
+struct CollapseResult {
+  CollapseSpec spec;
+  ContactLaw law;
+  std::vector<RealizationOutcome> outcomes;  // in realisation order
+  int collapsed = 0;
+  // Over the realisations that did not collapse: mean of n_tot and its standard error
+  // (sample standard deviation / sqrt(count)); NaN when none finished.
+  double n_tot_mean = 0, n_tot_error = 0;
+  std::uint64_t n_tot_min = 0, n_tot_max = 0;
+  double wall_seconds = 0;
+};
+
+// Called with each realisation's collisions in order, realisations in order, from the calling
+// thread (so a file written from it is the same for any thread count).
+using CollisionLog = std::function<void(const std::vector<CollisionRecord>&)>;
+
+// Throws UnphysicalStateError (other than a hard-sphere collapse) if a realisation turns unphysical.
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {});
+
+// The initial state of realisation r.
+ChainState collapse_initial_state(const CollapseSpec& spec, int r);
+
+}  // namespace granchain
