@@ -189,3 +189,54 @@ TEST_F(Cli, TheoryPrintsTheClosedFormsAsTableAndJson) {
     EXPECT_FALSE(fs::exists(dir_ / "bad.json")) << bad;
   }
 }
+
+// granchain collapse: the table, JSON, the event file and the store agree with each other; bad
+// input is one line, exit 2, nothing written.
+TEST_F(Cli, CollapseCountsStoresAndRecordsEveryCollision) {
+  const CliResult r = run("collapse --N 3 --e 0.05 --k 1e6,1e10 --realizations 200 --threads 2 --json out.json "
+                          "--events ev.csv --db t.db");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Eq. ntot-log"), std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(dir_ / "out.json"));
+  ASSERT_EQ(j["points"].size(), 2u);
+  std::uint64_t collisions = 0;
+  for (const auto& p : j["points"]) {
+    EXPECT_EQ(p["observables"]["collapsed"].get<int>(), 0);
+    EXPECT_GT(p["observables"]["n_tot"].get<double>(), 2.0);
+    collisions += p["observables"]["particle_collisions"].get<std::uint64_t>();
+  }
+  EXPECT_GT(j["slopes"][0]["slope_per_log10_k"].get<double>(), 0.5);  // the three-body sequence lengthens
+  // One CSV line per collision, plus the header.
+  const std::string csv = slurp(dir_ / "ev.csv");
+  EXPECT_EQ(static_cast<std::uint64_t>(std::count(csv.begin(), csv.end(), '\n')), collisions + 1);
+  EXPECT_EQ(csv.rfind("e,k,realization,collision,t_begin,t_end,i,j,speed_in,speed_out\n", 0), 0u);
+  // The store: two rows and 2 x 200 per-launch counts.
+  const CliResult q = run("collapse --N 3 --e 0.05 --k 1e6 --realizations 10 --db t.db -q");
+  EXPECT_EQ(q.exit_code, 0);
+  EXPECT_TRUE(q.out.empty());
+  for (const char* bad : {"collapse --N 1", "collapse --e 1.5", "collapse --k 0", "collapse --engine hard --k 1e6",
+                          "collapse --setup wall --stop ends", "collapse --realizations 0", "collapse --k 1e4:1e2:x10",
+                          "collapse --tc 1e-6", "collapse --dv0 -1"}) {
+    const CliResult b = run(std::string(bad) + " --json bad.json --events bad.csv --db bad.db");
+    EXPECT_EQ(b.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << bad << ": " << b.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.json") || fs::exists(dir_ / "bad.csv") || fs::exists(dir_ / "bad.db")) << bad;
+  }
+}
+
+// The hard-sphere engine through `run` (k = infinity, reported as such) and through `collapse`,
+// where a collapse is reported as such and the TC model continues past it.
+TEST_F(Cli, HardSphereEngineRunsAndReportsCollapse) {
+  const CliResult r = run("run --N 5 --e 0.9 --engine hard --T 50 --transient 5 --no-db --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["parameters"]["k"].is_null());  // infinity
+  EXPECT_EQ(j["derived"]["tau_c"].get<double>(), 0.0);
+  EXPECT_EQ(run("run --engine hard --k 1e6 --no-db").exit_code, 2);
+  const CliResult c = run("collapse --N 3 --e 0.05 --engine hard --stop strict --realizations 20 --no-db --json");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_GT(nlohmann::json::parse(c.out)["points"][0]["observables"]["collapsed"].get<int>(), 0);
+  const CliResult tc = run("collapse --N 3 --e 0.05 --engine hard --stop strict --tc 1e-6 --realizations 20 --no-db --json");
+  ASSERT_EQ(tc.exit_code, 0) << tc.err;
+  EXPECT_EQ(nlohmann::json::parse(tc.out)["points"][0]["observables"]["collapsed"].get<int>(), 0);
+}

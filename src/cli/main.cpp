@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <exception>
 
+#include "cli/collapse_command.hpp"
 #include "cli/run_command.hpp"
 #include "cli/theory_command.hpp"
 #include "version.hpp"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   granchain::RunCommand run(app);
   granchain::TheoryCommand theory(app);
+  granchain::CollapseCommand collapse(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -26,13 +28,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string msg = e.what();
     std::replace(msg.begin(), msg.end(), '\n', ' ');
-    const char* sub = run.selected() ? "run " : theory.selected() ? "theory " : "";
+    const char* sub = run.selected() ? "run " : theory.selected() ? "theory " : collapse.selected() ? "collapse " : "";
     fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, sub);
     return granchain::kExitBadInput;
   }
   try {
     if (run.selected()) return run.execute();
     if (theory.selected()) return theory.execute();
+    if (collapse.selected()) return collapse.execute();
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return 1;

@@ -118,6 +118,9 @@ const std::vector<Definition>& definitions() {
     }
     d.push_back(real_param("dt-factor", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6", "100",
                            [](double x) { return x >= 10 && x <= 1e6; }, [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
+    d.push_back(real_param("tc", "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
+                           "tc >= 0", "0", [](double x) { return x >= 0; },
+                           [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
     d.push_back(real_param("m", "particle mass (unit of mass)", "m > 0", "1",
                            [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.m = x; }));
     d.push_back(real_param("d", "particle diameter (unit of length)", "d > 0", "1",
@@ -171,6 +174,12 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
       for (const auto& d : definitions()) names += (names.empty() ? "" : ", ") + d.info.name;
       throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", key, where(value), names));
     }
+  }
+  if (is_hard_sphere_engine(o.spec.engine.name)) {
+    if (raw.count("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
+    o.spec.params.k = std::numeric_limits<double>::infinity();
+  } else if (raw.count("tc")) {
+    throw InputError("--tc: the TC model belongs to --engine hard");
   }
   o.spec.T = late.count("T") ? late["T"] : (o.spec.params.N < 50 ? 1e4 : 1e3);
   o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "store/collapse_json.hpp"
 #include "store/run_json.hpp"
 #include "version.hpp"
 
@@ -66,6 +67,42 @@ CREATE TABLE IF NOT EXISTS profiles(
   K REAL NOT NULL,
   K_err REAL,
   PRIMARY KEY(run_id, i)
+);
+CREATE TABLE IF NOT EXISTS collapse_runs(
+  id INTEGER PRIMARY KEY,
+  created_utc TEXT NOT NULL,
+  code_version TEXT NOT NULL,
+  setup TEXT NOT NULL,
+  engine TEXT NOT NULL,
+  N INTEGER NOT NULL,
+  e REAL NOT NULL,
+  k REAL NOT NULL,
+  a REAL NOT NULL,
+  v0 REAL NOT NULL,
+  dv0 REAL NOT NULL,
+  stop_rule TEXT NOT NULL,
+  realizations INTEGER NOT NULL,
+  seed INTEGER NOT NULL,
+  dt_factor REAL NOT NULL,
+  tc REAL NOT NULL,
+  tau_c REAL NOT NULL,
+  n_tot REAL,
+  n_tot_err REAL,
+  n_tot_min INTEGER NOT NULL,
+  n_tot_max INTEGER NOT NULL,
+  collapsed INTEGER NOT NULL,
+  wall_seconds REAL NOT NULL,
+  result_json TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS collapse_runs_by_point ON collapse_runs(setup, N, e, k);
+CREATE TABLE IF NOT EXISTS collapse_realizations(
+  run_id INTEGER NOT NULL REFERENCES collapse_runs(id) ON DELETE CASCADE,
+  realization INTEGER NOT NULL,
+  particle_collisions INTEGER NOT NULL,
+  wall_hits INTEGER NOT NULL,
+  collapsed INTEGER NOT NULL,
+  t_stop REAL NOT NULL,
+  PRIMARY KEY(run_id, realization)
 );
 )sql";
 
@@ -255,6 +292,58 @@ std::int64_t ResultsStore::insert_run(const RunResult& r) {
       prof.bind(7, p.kinetic.value);
       prof.bind(8, p.kinetic.error);
       prof.run();
+    }
+    exec("COMMIT");
+    return id;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
+  exec("BEGIN IMMEDIATE");
+  try {
+    Statement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
+        dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
+        wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
+    const CollapseSpec& s = r.spec;
+    int c = 1;
+    row.bind(c++, utc_now());
+    row.bind(c++, std::string(code_version()));
+    row.bind(c++, std::string(setup_name(s.setup)));
+    row.bind(c++, s.engine.name);
+    row.bind(c++, static_cast<std::int64_t>(s.params.N));
+    row.bind(c++, s.params.e);
+    row.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)
+    row.bind(c++, s.launch.a);
+    row.bind(c++, s.launch.v0);
+    row.bind(c++, s.launch.dv0);
+    row.bind(c++, std::string(rule_name(s.rule)));
+    row.bind(c++, static_cast<std::int64_t>(s.realizations));
+    row.bind(c++, static_cast<std::int64_t>(s.seed));
+    row.bind(c++, s.engine.dt_factor);
+    row.bind(c++, s.engine.hard.tc);
+    row.bind(c++, r.law.tau_c);
+    row.bind(c++, r.n_tot_mean);  // NaN (no realisation finished) is stored as NULL
+    row.bind(c++, r.n_tot_error);
+    row.bind(c++, static_cast<std::int64_t>(r.n_tot_min));
+    row.bind(c++, static_cast<std::int64_t>(r.n_tot_max));
+    row.bind(c++, static_cast<std::int64_t>(r.collapsed));
+    row.bind(c++, r.wall_seconds);
+    row.bind(c++, collapse_result_to_json(r).dump());
+    row.run();
+    const std::int64_t id = sqlite3_last_insert_rowid(db_);
+    Statement real(db_, "INSERT INTO collapse_realizations(run_id, realization, particle_collisions, wall_hits, collapsed, t_stop) VALUES(?,?,?,?,?,?)");
+    for (std::size_t i = 0; i < r.outcomes.size(); ++i) {
+      const RealizationOutcome& o = r.outcomes[i];
+      real.bind(1, id);
+      real.bind(2, static_cast<std::int64_t>(i));
+      real.bind(3, static_cast<std::int64_t>(o.particle_collisions));
+      real.bind(4, static_cast<std::int64_t>(o.wall_hits));
+      real.bind(5, static_cast<std::int64_t>(o.collapsed));
+      real.bind(6, o.t_stop);
+      real.run();
     }
     exec("COMMIT");
     return id;

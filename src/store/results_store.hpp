@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 
 struct sqlite3;
@@ -36,6 +37,9 @@ class ResultsStore {
 
   // Appends one run with its profiles in one transaction and returns its id.
   std::int64_t insert_run(const RunResult& r);
+  // Appends one collapse count (granchain collapse) with its per-realisation counts, in one
+  // transaction, and returns its id.
+  std::int64_t insert_collapse(const CollapseResult& r);
   std::int64_t count_runs();
   sqlite3* handle() { return db_; }
 

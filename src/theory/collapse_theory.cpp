@@ -98,4 +98,6 @@ double ntot_slope_per_ln_k(double e) {
   return -1.0 / (2.0 * std::log(q_ratio(e)));
 }
 
+double collisions_slope_per_ln_k(double e) { return 2.0 * ntot_slope_per_ln_k(e); }
+
 }  // namespace granchain::theory

@@ -41,5 +41,9 @@ double f_shift(double e);
 // Slope of n_tot against ln k, Eq. (ntot-log): -1 / (2 ln q); against log10 k it is ln 10 times
 // this. 0 < e < e_c(3).
 double ntot_slope_per_ln_k(double e);
+// Slope against ln k of the number of all collisions of the three-body sequence: -1 / ln q, twice
+// Eq. (ntot-log). The index n of Eq. (deltat12) counts intervals between collisions of one pair
+// (1, 2); each such interval holds one collision of (2, 3) too, so the total is 2n + const.
+double collisions_slope_per_ln_k(double e);
 
 }  // namespace granchain::theory

@@ -1,0 +1,327 @@
+#include "cli/collapse_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli/input_error.hpp"
+#include "cli/output_file.hpp"
+#include "cli/run_command.hpp"
+#include "cli/value_list.hpp"
+#include "engines/engine.hpp"
+#include "simulation/collapse_run.hpp"
+#include "store/collapse_json.hpp"
+#include "store/results_store.hpp"
+#include "theory/collapse_theory.hpp"
+
+namespace granchain {
+
+struct CollapseCommand::Impl {
+  int N = 3;
+  std::string e = "0.03";
+  std::string k = "1e4:1e10:x10";
+  std::string engine = "exact";
+  std::string setup = "free";
+  double a = 1.0, v0 = 1.0, dv0 = 0.1;
+  std::string stop;
+  long long realizations = 1000;
+  long long seed = 1;
+  int threads = 0;
+  double dt_factor = 100.0;
+  double tc = 0.0;
+  long long collapse_collisions = 1000;
+  double collapse_time = 1e-9;
+  std::string events_path, json_path, db_path = "granchain.db";
+  CLI::Option* json_option = nullptr;
+  CLI::Option* k_option = nullptr;
+  CLI::Option* tc_option = nullptr;
+  bool no_db = false, quiet = false;
+};
+
+CollapseCommand::CollapseCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
+  sub_ = app.add_subcommand("collapse", "Count the collisions n_tot of an inelastic collapse in free space (or on a wall), "
+                                        "averaged over random launches.");
+  auto& o = *impl_;
+  sub_->add_option("--N", o.N, "number of particles; integer 2 <= N <= 100000; default 3");
+  sub_->add_option("--e", o.e, "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1); 0 < e <= 1; default 0.03")
+      ->type_name("LIST");
+  o.k_option = sub_->add_option("--k", o.k, "elastic constants: a list or range (1e4:1e12:x10); k > 0; default 1e4:1e10:x10 "
+                                            "(not with --engine hard, whose k is infinite)")
+                   ->type_name("LIST");
+  sub_->add_option("--engine", o.engine, "exact (default), reference, reference-located (dt = tau_c/dt-factor) or hard (k = infinity)");
+  sub_->add_option("--setup", o.setup, "free: free space, Sec. III.D (default); wall: Bernu-Mazighi spheres thrown "
+                                       "against a wall of restitution e, Sec. II.C");
+  sub_->add_option("--a", o.a, "initial space between neighbours (and particle 1 and the wall); a >= 0; default 1");
+  sub_->add_option("--v0", o.v0, "launch speed (inward in free space, toward the wall); v0 > 0; default 1");
+  sub_->add_option("--dv0", o.dv0, "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1); dv0 >= 0; default 0.1");
+  sub_->add_option("--stop", o.stop, "ends (the paper's, free space only; default there) or strict (default on a wall)");
+  sub_->add_option("--realizations", o.realizations, "random launches per (e, k); integer 1 <= R <= 10000000; default 1000");
+  sub_->add_option("--seed", o.seed, "base seed; launch r uses derive_seed(seed, r), the same at every e and k; "
+                                     "integer 0 <= seed <= 9223372036854775807; default 1");
+  sub_->add_option("--threads", o.threads, "threads over realisations; 1 <= threads <= 1024; default all cores "
+                                           "(results do not depend on it)");
+  sub_->add_option("--dt-factor", o.dt_factor, "reference engines: dt = tau_c / dt-factor; 10 <= dt-factor <= 1e6; default 100");
+  o.tc_option = sub_->add_option("--tc", o.tc, "hard engine: TC model time t_c (a collision within t_c of a particle's "
+                                               "previous one is elastic); tc >= 0; default 0 (off)");
+  sub_->add_option("--collapse-collisions", o.collapse_collisions,
+                   "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e9; default 1000");
+  sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
+  sub_->add_option("--events", o.events_path, "write every collision (e, k, realisation, index, contact begin and end "
+                                              "times, pair, speeds in and out) as CSV to FILE")
+      ->type_name("FILE");
+  o.json_option = sub_->add_option("--json", o.json_path, "write the results as JSON to FILE, or to standard output if no FILE")
+                      ->expected(0, 1)
+                      ->type_name("[FILE]");
+  sub_->add_option("--db", o.db_path, "results store (SQLite), table collapse_runs; default granchain.db")->type_name("PATH");
+  sub_->add_flag("--no-db", o.no_db, "do not store the results");
+  sub_->add_flag("--quiet,-q", o.quiet, "print nothing but errors (and JSON to standard output if asked)");
+  sub_->footer(
+      "Launch (free space, Sec. III.D): x_i = (i - (N+1)/2)(d + a), v_i = -v0 sgn(x_i) + dv0 xi_i, xi_i uniform\n"
+      "in [-1, 1), no gravity. Wall: particle 1 a above the wall, gaps a, v_i = -v0 + dv0 xi_i; the wall\n"
+      "returns particle 1 with e times its speed, like its mirror image (e_c(2N) = e_c^wall(N), Eq. symmetry).\n"
+      "n_tot counts every collision (a contact that ends; a wall hit) until the stop rule holds. The rules\n"
+      "are checked whenever no contact is open:\n"
+      "  ends   (the paper's): v_N - v_1 > 0. Inner pairs may still approach; their later collisions\n"
+      "         are not counted.\n"
+      "  strict: v_{i+1} >= v_i for every neighbouring pair (and v_1 >= 0 on a wall): no pair approaches,\n"
+      "         so no collision can follow; n_tot is then every collision of the launch.\n"
+      "Hard spheres (k = infinity) that collapse are counted as collapsed and left out of the mean.\n"
+      "For each e with several k, the slope of n_tot against log10 k between successive k is computed\n"
+      "from the per-launch differences (the same launches at every k), and alpha = d ln n_tot / d ln k\n"
+      "from the two means (for n_tot ~ k^alpha); for N = 3 below e_c(3) the slope is\n"
+      "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n"
+      "Exit codes: 0 ok, 2 bad input (nothing written), 3 unphysical (nothing written), 4 store failed.");
+}
+
+namespace {
+
+struct Slope {
+  double e, k1, k2, value, error;
+  int pairs;
+  double alpha = 0, alpha_error = 0;  // d ln n_tot / d ln k from the two means
+};
+
+// Slope of n_tot against log10 k between two counts of the same launches, from the per-launch
+// differences (launches that collapsed at either k are left out).
+Slope paired_slope(const CollapseResult& a, const CollapseResult& b) {
+  const double dlog = std::log10(b.spec.params.k / a.spec.params.k);
+  std::vector<double> diff;
+  for (std::size_t r = 0; r < a.outcomes.size() && r < b.outcomes.size(); ++r) {
+    if (a.outcomes[r].collapsed || b.outcomes[r].collapsed) continue;
+    diff.push_back((static_cast<double>(b.outcomes[r].n_tot()) - static_cast<double>(a.outcomes[r].n_tot())) / dlog);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Slope s{a.spec.params.e, a.spec.params.k, b.spec.params.k, nan, nan, static_cast<int>(diff.size())};
+  const double ln_k = std::log(b.spec.params.k / a.spec.params.k);
+  s.alpha = std::log(b.n_tot_mean / a.n_tot_mean) / ln_k;
+  // Errors of the two means combined as if independent: an upper bound, since the same launches
+  // at both k make them positively correlated.
+  s.alpha_error = std::hypot(a.n_tot_error / a.n_tot_mean, b.n_tot_error / b.n_tot_mean) / ln_k;
+  if (diff.empty()) return s;
+  double sum = 0;
+  for (double x : diff) sum += x;
+  s.value = sum / diff.size();
+  if (diff.size() > 1) {
+    double ss = 0;
+    for (double x : diff) ss += (x - s.value) * (x - s.value);
+    s.error = std::sqrt(ss / (diff.size() - 1) / diff.size());
+  }
+  return s;
+}
+
+std::string num(double x, const char* f = "{:.4f}") { return std::isfinite(x) ? fmt::format(fmt::runtime(f), x) : "-"; }
+
+}  // namespace
+
+int CollapseCommand::execute() {
+  auto& o = *impl_;
+  const bool json_requested = o.json_option->count() > 0;
+  const bool json_stdout = json_requested && o.json_path.empty();
+  const bool hard = is_hard_sphere_engine(o.engine);
+  std::vector<double> es, ks;
+  CollapseSpec base;
+  try {
+    if (o.N < 2 || o.N > 100000) throw InputError(fmt::format("--N = {} is out of range; valid range: integer 2 <= N <= 100000", o.N));
+    es = parse_value_list(o.e, "--e");
+    for (double e : es)
+      if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
+    bool known = false;
+    for (const auto& n : engine_names()) known = known || n == o.engine;
+    if (!known) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: exact, reference, reference-located, hard", o.engine));
+    if (hard) {
+      if (o.k_option->count() > 0) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
+      ks = {std::numeric_limits<double>::infinity()};
+    } else {
+      ks = parse_value_list(o.k, "--k");
+      for (double k : ks)
+        if (!(k > 0)) throw InputError(fmt::format("--k: {} is out of range; valid range: k > 0", k));
+      if (o.tc_option->count() > 0) throw InputError("--tc: the TC model belongs to --engine hard");
+    }
+    if (o.setup != "free" && o.setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", o.setup));
+    base.setup = o.setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
+    if (o.stop.empty()) o.stop = base.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
+    if (o.stop != "ends" && o.stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", o.stop));
+    base.rule = o.stop == "ends" ? StopRule::Ends : StopRule::Strict;
+    if (base.rule == StopRule::Ends && base.setup == CollapseSetup::Wall)
+      throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
+    if (!(o.a >= 0 && std::isfinite(o.a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", o.a));
+    if (!(o.v0 > 0 && std::isfinite(o.v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", o.v0));
+    if (!(o.dv0 >= 0 && std::isfinite(o.dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", o.dv0));
+    if (o.realizations < 1 || o.realizations > 10000000)
+      throw InputError(fmt::format("--realizations = {} is out of range; valid range: integer 1 <= R <= 10000000", o.realizations));
+    if (o.seed < 0) throw InputError(fmt::format("--seed = {} is out of range; valid range: integer 0 <= seed <= 9223372036854775807", o.seed));
+    if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (o.threads < 1 || o.threads > 1024) throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", o.threads));
+    if (!(o.dt_factor >= 10 && o.dt_factor <= 1e6))
+      throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", o.dt_factor));
+    if (!(o.tc >= 0 && std::isfinite(o.tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", o.tc));
+    if (o.collapse_collisions < 2 || o.collapse_collisions > 1000000000)
+      throw InputError(fmt::format("--collapse-collisions = {} is out of range; valid range: 2 <= n <= 1e9", o.collapse_collisions));
+    if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
+      throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
+    if (!o.events_path.empty()) check_output_file(o.events_path, "--events");
+    if (json_requested && !json_stdout) check_output_file(o.json_path);
+    if (!o.no_db) ResultsStore::preflight(o.db_path);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+
+  base.params.N = o.N;
+  base.params.g = 0.0;
+  base.engine.name = o.engine;
+  base.engine.dt_factor = o.dt_factor;
+  base.engine.hard = {o.tc, static_cast<std::uint64_t>(o.collapse_collisions), o.collapse_time};
+  base.launch = {o.a, o.v0, o.dv0};
+  base.realizations = static_cast<int>(o.realizations);
+  base.seed = static_cast<std::uint64_t>(o.seed);
+  base.threads = o.threads;
+
+  // The event file is written to a temporary name and renamed only when everything succeeded.
+  const std::string events_tmp = o.events_path.empty() ? "" : fmt::format("{}.tmp-{}", o.events_path, getpid());
+  std::ofstream events;
+  if (!events_tmp.empty()) {
+    events.open(events_tmp);
+    events << "e,k,realization,collision,t_begin,t_end,i,j,speed_in,speed_out\n";
+  }
+  auto remove_tmp = [&] {
+    if (!events_tmp.empty()) std::filesystem::remove(events_tmp);
+  };
+
+  if (!o.quiet && !json_stdout) {
+    fmt::print("N = {}, setup {}, engine {}, stop rule {}, {} launches per point, a = {}, v0 = {}, dv0 = {}\n", o.N,
+               setup_name(base.setup), o.engine, rule_name(base.rule), base.realizations, o.a, o.v0, o.dv0);
+    fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8}\n", "e", "k", "n_tot", "+-", "min", "max", "collapsed",
+               "seconds");
+    std::fflush(stdout);
+  }
+  std::vector<CollapseResult> results;
+  std::vector<Slope> slopes;
+  try {
+    for (double e : es) {
+      const std::size_t first = results.size();
+      for (double k : ks) {
+        CollapseSpec spec = base;
+        spec.params.e = e;
+        spec.params.k = k;
+        CollisionLog log;
+        if (events.is_open()) {
+          log = [&events, e, k](const std::vector<CollisionRecord>& recs) {
+            for (const CollisionRecord& c : recs) {
+              events << fmt::format("{},{},{},{},{:.17g},{:.17g},{},{},{:.17g},{:.17g}\n", e, k, c.realization, c.index,
+                                    c.t_begin, c.t_end, c.i, c.i + 1, c.speed_in, c.speed_out);
+            }
+          };
+        }
+        results.push_back(run_collapse(spec, log));
+        const CollapseResult& r = results.back();
+        if (!o.quiet && !json_stdout) {
+          fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8.2f}\n", e, hard ? "inf" : fmt::format("{:g}", k),
+                     num(r.n_tot_mean), num(r.n_tot_error), r.n_tot_min, r.n_tot_max,
+                     fmt::format("{}/{}", r.collapsed, base.realizations), r.wall_seconds);
+          std::fflush(stdout);
+        }
+      }
+      for (std::size_t i = first; i + 1 < results.size(); ++i) slopes.push_back(paired_slope(results[i], results[i + 1]));
+    }
+  } catch (const UnphysicalStateError& e) {
+    remove_tmp();
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written\n", e.what());
+    return kExitUnphysical;
+  }
+
+  nlohmann::json j;
+  j["points"] = nlohmann::json::array();
+  for (const CollapseResult& r : results) j["points"].push_back(collapse_result_to_json(r));
+  j["slopes"] = nlohmann::json::array();
+  const bool three_body = o.N == 3 && base.setup == CollapseSetup::FreeSpace;
+  if (!slopes.empty() && !o.quiet && !json_stdout) {
+    fmt::print("\nslope of n_tot against log10 k (paired over launches){}\n",
+               three_body ? "; theory for N = 3: Eq. (ntot-log) -ln10/(2 ln q), all collisions -ln10/ln q" : "");
+    fmt::print("{:>8} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", "e", "k1", "k2", "slope", "+-", "alpha",
+               "+-", "Eq. ntot-log", "all collisions");
+  }
+  for (const Slope& s : slopes) {
+    const bool theory_ok = three_body && s.e < theory::ec3();
+    const double paper = theory_ok ? std::log(10.0) * theory::ntot_slope_per_ln_k(s.e) : std::nan("");
+    const double total = theory_ok ? std::log(10.0) * theory::collisions_slope_per_ln_k(s.e) : std::nan("");
+    auto real = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    j["slopes"].push_back({{"e", s.e}, {"k1", s.k1}, {"k2", s.k2}, {"slope_per_log10_k", real(s.value)},
+                           {"error", real(s.error)}, {"launches", s.pairs}, {"alpha", real(s.alpha)},
+                           {"alpha_error", real(s.alpha_error)}, {"theory_eq_ntot_log", real(paper)},
+                           {"theory_all_collisions", real(total)}});
+    if (!o.quiet && !json_stdout) {
+      fmt::print("{:>8} {:>10g} {:>10g} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", s.e, s.k1, s.k2, num(s.value),
+                 num(s.error), num(s.alpha, "{:.3f}"), num(s.alpha_error, "{:.3f}"), num(paper), num(total));
+    }
+  }
+
+  std::string stored;
+  if (!o.no_db) {
+    try {
+      ResultsStore store(o.db_path);
+      std::vector<std::int64_t> ids;
+      for (const CollapseResult& r : results) ids.push_back(store.insert_collapse(r));
+      j["stored"] = {{"db", o.db_path}, {"collapse_run_ids", ids}};
+      stored = fmt::format("{} rows in {} (table collapse_runs)", ids.size(), o.db_path);
+    } catch (const StoreError& e) {
+      remove_tmp();
+      fmt::print(stderr, "granchain: error: {}; the results were not stored\n", e.what());
+      return kExitStoreFailed;
+    }
+  }
+  try {
+    if (events.is_open()) {
+      events.close();
+      if (!events) throw std::runtime_error(fmt::format("--events: cannot write '{}'", o.events_path));
+      std::filesystem::rename(events_tmp, o.events_path);
+      stored += (stored.empty() ? "" : ", ") + fmt::format("collisions in {}", o.events_path);
+    }
+    if (json_requested) {
+      if (json_stdout) {
+        fmt::print("{}\n", j.dump(2));
+      } else {
+        write_file_atomically(o.json_path, j.dump(2) + "\n");
+        stored += (stored.empty() ? "" : ", ") + fmt::format("JSON in {}", o.json_path);
+      }
+    }
+  } catch (const std::exception& e) {
+    remove_tmp();
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  }
+  if (!o.quiet && !json_stdout && !stored.empty()) fmt::print("\nwritten: {}\n", stored);
+  return kExitOk;
+}
+
+}  // namespace granchain

@@ -1,0 +1,13 @@
+#pragma once
+// Lists of parameter values on the command line: "3,4,5", a linear range "0.80:0.90:0.002"
+// (first:last:step, last included when it lies on the grid, to round-off), a geometric range
+// "1e4:1e12:x10" (first:last:xFACTOR), and any mix separated by commas.
+#include <string>
+#include <vector>
+
+namespace granchain {
+
+// Throws InputError naming `option` on malformed text or a range of more than 100000 values.
+std::vector<double> parse_value_list(const std::string& text, const std::string& option);
+
+}  // namespace granchain

@@ -1,0 +1,49 @@
+#include "store/collapse_json.hpp"
+
+#include <cmath>
+
+#include "version.hpp"
+
+namespace granchain {
+
+namespace {
+nlohmann::json real(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+}  // namespace
+
+nlohmann::json collapse_result_to_json(const CollapseResult& r) {
+  const CollapseSpec& s = r.spec;
+  std::uint64_t pp = 0, wall = 0;
+  for (const RealizationOutcome& o : r.outcomes) {
+    pp += o.particle_collisions;
+    wall += o.wall_hits;
+  }
+  return {{"code_version", code_version()},
+          {"parameters",
+           {{"setup", setup_name(s.setup)},
+            {"N", s.params.N},
+            {"e", s.params.e},
+            {"k", real(s.params.k)},
+            {"m", s.params.m},
+            {"d", s.params.d},
+            {"a", s.launch.a},
+            {"v0", s.launch.v0},
+            {"dv0", s.launch.dv0},
+            {"stop", rule_name(s.rule)},
+            {"realizations", s.realizations},
+            {"seed", s.seed},
+            {"engine", s.engine.name},
+            {"dt_factor", s.engine.dt_factor},
+            {"tc", s.engine.hard.tc}}},
+          {"derived", {{"D", real(r.law.D)}, {"tau_c", r.law.tau_c}}},
+          {"observables",
+           {{"n_tot", real(r.n_tot_mean)},
+            {"n_tot_err", real(r.n_tot_error)},
+            {"n_tot_min", r.n_tot_min},
+            {"n_tot_max", r.n_tot_max},
+            {"collapsed", r.collapsed},
+            {"particle_collisions", pp},
+            {"wall_hits", wall}}},
+          {"cost", {{"wall_seconds", r.wall_seconds}, {"threads", s.threads}}}};
+}
+
+}  // namespace granchain
