@@ -91,7 +91,8 @@ CollapseCommand::CollapseCommand(CLI::App& app) : impl_(std::make_shared<Impl>()
       "  ends   (the paper's): v_N - v_1 > 0. Inner pairs may still approach; their later collisions\n"
       "         are not counted.\n"
       "  strict: v_{i+1} >= v_i for every neighbouring pair (and v_1 >= 0 on a wall): no pair approaches,\n"
-      "         so no collision can follow; n_tot is then every collision of the launch.\n"
+      "         so no collision can follow; n_tot is then every collision of the launch. A launch\n"
+      "         also ends when nothing happens up to t = 1e7 (pairs approaching by round-off only).\n"
       "Hard spheres (k = infinity) that collapse are counted as collapsed and left out of the mean.\n"
       "For each e with several k, the slope of n_tot against log10 k between successive k is computed\n"
       "from the per-launch differences (the same launches at every k), and alpha = d ln n_tot / d ln k\n"
@@ -283,6 +284,29 @@ int CollapseCommand::execute() {
     if (!o.quiet && !json_stdout) {
       fmt::print("{:>8} {:>10g} {:>10g} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", s.e, s.k1, s.k2, num(s.value),
                  num(s.error), num(s.alpha, "{:.3f}"), num(s.alpha_error, "{:.3f}"), num(paper), num(total));
+    }
+  }
+
+  // Hard spheres over a list of e: the critical restitution is bracketed by the largest e at which
+  // a launch collapsed and the next e of the list, at which none did.
+  if (hard && es.size() > 1) {
+    double last_collapsing = std::nan(""), next_clean = std::nan("");
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (results[i].collapsed > 0) {
+        last_collapsing = results[i].spec.params.e;
+        next_clean = i + 1 < results.size() ? results[i + 1].spec.params.e : std::nan("");
+      }
+    }
+    auto real = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    const double icw = theory::ec_wall_icw(o.N);
+    const double cushion = o.N >= 2 ? theory::ec_wall_cushion(o.N) : std::nan("");
+    j["critical"] = {{"last_collapsing_e", real(last_collapsing)}, {"next_e_without_collapse", real(next_clean)},
+                     {"ec_wall_icw", icw}, {"ec_wall_cushion", cushion}};
+    if (base.setup == CollapseSetup::FreeSpace && o.N >= 3) j["critical"]["ec_free"] = theory::ec_free(o.N);
+    if (!o.quiet && !json_stdout) {
+      fmt::print("\ncritical restitution: collapses up to e = {}, none at e = {} (ICW e_c^wall({}) = {:.6f}, cushion {:.6f}{})\n",
+                 num(last_collapsing), num(next_clean), o.N, icw, cushion,
+                 base.setup == CollapseSetup::FreeSpace && o.N >= 3 ? fmt::format(", free-space e_c({}) = {:.6f}", o.N, theory::ec_free(o.N)) : "");
     }
   }
 

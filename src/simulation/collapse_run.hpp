@@ -8,7 +8,9 @@
 //          approaching, so collisions may follow that are not counted.
 //   strict: v_{i+1} >= v_i for every neighbouring pair (and, with a wall, v_1 >= 0): no pair
 //          approaches, so in free flight no collision can ever happen again; n_tot is then the
-//          total number of collisions of the launch.
+//          total number of collisions of the launch. A launch also ends when no event happens
+//          until t_max (1e7) with no contact open: a pair approaching that slowly (by round-off,
+//          after a wall or a collapse) is not waited for.
 // A hard-sphere realisation that collapses (infinitely many collisions) is counted as collapsed
 // and left out of the n_tot average; the fraction is reported.
 #include <cstdint>
