@@ -21,20 +21,6 @@ CollapseSpec three_body(double e, double k, int R) {
   return s;
 }
 
-// Mean and standard error of the per-launch increase of n_tot per decade of k.
-std::pair<double, double> paired_slope(const CollapseResult& a, const CollapseResult& b) {
-  const double dlog = std::log10(b.spec.params.k / a.spec.params.k);
-  double sum = 0, sum2 = 0;
-  const int n = static_cast<int>(a.outcomes.size());
-  for (int r = 0; r < n; ++r) {
-    const double d = (static_cast<double>(b.outcomes[r].n_tot()) - static_cast<double>(a.outcomes[r].n_tot())) / dlog;
-    sum += d;
-    sum2 += d * d;
-  }
-  const double mean = sum / n;
-  return {mean, std::sqrt((sum2 / n - mean * mean) / (n - 1))};
-}
-
 }  // namespace
 
 // Below e_c(3) every collision of the three-body sequence shrinks the interval between collisions
@@ -47,7 +33,8 @@ TEST(CollapseRun, ThreeBodyCollisionsGrowLikeLogKWithTwiceThePaperSlope) {
   const double e = 0.05;
   const CollapseResult a = run_collapse(three_body(e, 1e12, 400));
   const CollapseResult b = run_collapse(three_body(e, 1e14, 400));
-  const auto [slope, error] = paired_slope(a, b);
+  const KSlope ks = k_slope(a, b);
+  const double slope = ks.per_log10_k, error = ks.error;
   const double total = std::log(10.0) * theory::collisions_slope_per_ln_k(e);
   const double paper = std::log(10.0) * theory::ntot_slope_per_ln_k(e);
   EXPECT_LT(std::abs(slope - total), 4 * error) << slope << " +- " << error << " vs " << total;

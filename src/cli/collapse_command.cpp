@@ -103,40 +103,6 @@ CollapseCommand::CollapseCommand(CLI::App& app) : impl_(std::make_shared<Impl>()
 
 namespace {
 
-struct Slope {
-  double e, k1, k2, value, error;
-  int pairs;
-  double alpha = 0, alpha_error = 0;  // d ln n_tot / d ln k from the two means
-};
-
-// Slope of n_tot against log10 k between two counts of the same launches, from the per-launch
-// differences (launches that collapsed at either k are left out).
-Slope paired_slope(const CollapseResult& a, const CollapseResult& b) {
-  const double dlog = std::log10(b.spec.params.k / a.spec.params.k);
-  std::vector<double> diff;
-  for (std::size_t r = 0; r < a.outcomes.size() && r < b.outcomes.size(); ++r) {
-    if (a.outcomes[r].collapsed || b.outcomes[r].collapsed) continue;
-    diff.push_back((static_cast<double>(b.outcomes[r].n_tot()) - static_cast<double>(a.outcomes[r].n_tot())) / dlog);
-  }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  Slope s{a.spec.params.e, a.spec.params.k, b.spec.params.k, nan, nan, static_cast<int>(diff.size())};
-  const double ln_k = std::log(b.spec.params.k / a.spec.params.k);
-  s.alpha = std::log(b.n_tot_mean / a.n_tot_mean) / ln_k;
-  // Errors of the two means combined as if independent: an upper bound, since the same launches
-  // at both k make them positively correlated.
-  s.alpha_error = std::hypot(a.n_tot_error / a.n_tot_mean, b.n_tot_error / b.n_tot_mean) / ln_k;
-  if (diff.empty()) return s;
-  double sum = 0;
-  for (double x : diff) sum += x;
-  s.value = sum / diff.size();
-  if (diff.size() > 1) {
-    double ss = 0;
-    for (double x : diff) ss += (x - s.value) * (x - s.value);
-    s.error = std::sqrt(ss / (diff.size() - 1) / diff.size());
-  }
-  return s;
-}
-
 std::string num(double x, const char* f = "{:.4f}") { return std::isfinite(x) ? fmt::format(fmt::runtime(f), x) : "-"; }
 
 }  // namespace
@@ -227,7 +193,7 @@ int CollapseCommand::execute() {
     std::fflush(stdout);
   }
   std::vector<CollapseResult> results;
-  std::vector<Slope> slopes;
+  std::vector<KSlope> slopes;
   try {
     for (double e : es) {
       const std::size_t first = results.size();
@@ -253,7 +219,7 @@ int CollapseCommand::execute() {
           std::fflush(stdout);
         }
       }
-      for (std::size_t i = first; i + 1 < results.size(); ++i) slopes.push_back(paired_slope(results[i], results[i + 1]));
+      for (std::size_t i = first; i + 1 < results.size(); ++i) slopes.push_back(k_slope(results[i], results[i + 1]));
     }
   } catch (const UnphysicalStateError& e) {
     remove_tmp();
@@ -272,17 +238,18 @@ int CollapseCommand::execute() {
     fmt::print("{:>8} {:>10} {:>10} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", "e", "k1", "k2", "slope", "+-", "alpha",
                "+-", "Eq. ntot-log", "all collisions");
   }
-  for (const Slope& s : slopes) {
-    const bool theory_ok = three_body && s.e < theory::ec3();
-    const double paper = theory_ok ? std::log(10.0) * theory::ntot_slope_per_ln_k(s.e) : std::nan("");
-    const double total = theory_ok ? std::log(10.0) * theory::collisions_slope_per_ln_k(s.e) : std::nan("");
-    auto real = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-    j["slopes"].push_back({{"e", s.e}, {"k1", s.k1}, {"k2", s.k2}, {"slope_per_log10_k", real(s.value)},
-                           {"error", real(s.error)}, {"launches", s.pairs}, {"alpha", real(s.alpha)},
+  for (const KSlope& s : slopes) {
+    const double e = s.e;
+    const bool theory_ok = three_body && e < theory::ec3();
+    const double paper = theory_ok ? std::log(10.0) * theory::ntot_slope_per_ln_k(e) : std::nan("");
+    const double total = theory_ok ? std::log(10.0) * theory::collisions_slope_per_ln_k(e) : std::nan("");
+    const auto real = number_or_null;
+    j["slopes"].push_back({{"e", e}, {"k1", s.k1}, {"k2", s.k2}, {"slope_per_log10_k", real(s.per_log10_k)},
+                           {"error", real(s.error)}, {"launches", s.launches}, {"alpha", real(s.alpha)},
                            {"alpha_error", real(s.alpha_error)}, {"theory_eq_ntot_log", real(paper)},
                            {"theory_all_collisions", real(total)}});
     if (!o.quiet && !json_stdout) {
-      fmt::print("{:>8} {:>10g} {:>10g} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", s.e, s.k1, s.k2, num(s.value),
+      fmt::print("{:>8} {:>10g} {:>10g} {:>10} {:>9} {:>8} {:>8} {:>14} {:>14}\n", e, s.k1, s.k2, num(s.per_log10_k),
                  num(s.error), num(s.alpha, "{:.3f}"), num(s.alpha_error, "{:.3f}"), num(paper), num(total));
     }
   }
@@ -297,7 +264,7 @@ int CollapseCommand::execute() {
         next_clean = i + 1 < results.size() ? results[i + 1].spec.params.e : std::nan("");
       }
     }
-    auto real = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    const auto real = number_or_null;
     const double icw = theory::ec_wall_icw(o.N);
     const double cushion = o.N >= 2 ? theory::ec_wall_cushion(o.N) : std::nan("");
     j["critical"] = {{"last_collapsing_e", real(last_collapsing)}, {"next_e_without_collapse", real(next_clean)},

@@ -35,7 +35,6 @@ class EventQueue {
     }
   }
 
-  double time(int slot) const { return tree_[leaves_ + slot].t; }
   int next_slot() const { return tree_[1].slot; }  // the earliest (the lowest slot on a tie)
   double next_time() const { return tree_[1].t; }
 

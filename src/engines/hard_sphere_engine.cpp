@@ -220,12 +220,6 @@ const ChainState& HardSphereEngine::state() const {
   return state_;
 }
 
-std::vector<double> HardSphereEngine::gaps() const {
-  std::vector<double> s(std::max(n_ - 1, 0));
-  for (int i = 0; i + 1 < n_; ++i) s[i] = gap_at(i, now_);
-  return s;
-}
-
 double HardSphereEngine::mechanical_energy_per_mass() const {
   const ChainState& s = state();
   double E = 0;

@@ -67,8 +67,6 @@ class HardSphereEngine final : public Engine {
   // Kinetic + gravitational energy per unit mass at time(), z measured from the floor level of
   // the centres (d/2). For conservation tests.
   double mechanical_energy_per_mass() const;
-  // Gaps z_{i+1} - z_i - d at time(), straight from the stored gaps (full relative precision).
-  std::vector<double> gaps() const;
   // Collisions that the TC model made elastic.
   std::uint64_t elastic_by_tc() const { return tc_elastic_; }
 

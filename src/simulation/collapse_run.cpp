@@ -9,6 +9,8 @@
 #include <limits>
 #include <mutex>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "engines/hard_sphere_engine.hpp"
 #include "model/floor.hpp"
@@ -77,6 +79,21 @@ bool any_overlap(const ChainState& s, double d) {
   for (std::size_t i = 0; i + 1 < s.z.size(); ++i)
     if (s.z[i + 1] - s.z[i] < d) return true;
   return false;
+}
+
+// Mean and standard error of the mean (sample standard deviation / sqrt(n)), two-pass; NaN where
+// undefined (no value, or one value for the error).
+std::pair<double, double> mean_and_error(const std::vector<double>& x) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (x.empty()) return {nan, nan};
+  double sum = 0;
+  for (double v : x) sum += v;
+  const double mean = sum / static_cast<double>(x.size());
+  if (x.size() < 2) return {mean, nan};
+  double ss = 0;
+  for (double v : x) ss += (v - mean) * (v - mean);
+  const double n = static_cast<double>(x.size());
+  return {mean, std::sqrt(ss / (n - 1) / n)};
 }
 
 struct RealizationRun {
@@ -186,29 +203,41 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log) {
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 
-  // Statistics over the realisations that did not collapse, two-pass, in realisation order.
-  double sum = 0;
-  int n = 0;
+  // Statistics over the realisations that did not collapse, in realisation order.
+  std::vector<double> counts;
   res.n_tot_min = std::numeric_limits<std::uint64_t>::max();
   for (const RealizationOutcome& o : res.outcomes) {
     if (o.collapsed) {
       ++res.collapsed;
       continue;
     }
-    sum += static_cast<double>(o.n_tot());
-    ++n;
+    counts.push_back(static_cast<double>(o.n_tot()));
     res.n_tot_min = std::min(res.n_tot_min, o.n_tot());
     res.n_tot_max = std::max(res.n_tot_max, o.n_tot());
   }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (n == 0) res.n_tot_min = 0;
-  res.n_tot_mean = n > 0 ? sum / n : nan;
-  double ss = 0;
-  for (const RealizationOutcome& o : res.outcomes)
-    if (!o.collapsed) ss += (static_cast<double>(o.n_tot()) - res.n_tot_mean) * (static_cast<double>(o.n_tot()) - res.n_tot_mean);
-  res.n_tot_error = n > 1 ? std::sqrt(ss / (n - 1) / n) : nan;
+  if (counts.empty()) res.n_tot_min = 0;
+  std::tie(res.n_tot_mean, res.n_tot_error) = mean_and_error(counts);
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
+}
+
+KSlope k_slope(const CollapseResult& a, const CollapseResult& b) {
+  KSlope s;
+  s.e = a.spec.params.e;
+  s.k1 = a.spec.params.k;
+  s.k2 = b.spec.params.k;
+  const double dlog = std::log10(s.k2 / s.k1);
+  std::vector<double> diff;
+  for (std::size_t r = 0; r < a.outcomes.size() && r < b.outcomes.size(); ++r) {
+    if (a.outcomes[r].collapsed || b.outcomes[r].collapsed) continue;
+    diff.push_back((static_cast<double>(b.outcomes[r].n_tot()) - static_cast<double>(a.outcomes[r].n_tot())) / dlog);
+  }
+  s.launches = static_cast<int>(diff.size());
+  std::tie(s.per_log10_k, s.error) = mean_and_error(diff);
+  const double ln_k = std::log(s.k2 / s.k1);
+  s.alpha = std::log(b.n_tot_mean / a.n_tot_mean) / ln_k;
+  s.alpha_error = std::hypot(a.n_tot_error / a.n_tot_mean, b.n_tot_error / b.n_tot_mean) / ln_k;
+  return s;
 }
 
 }  // namespace granchain

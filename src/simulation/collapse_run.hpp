@@ -78,6 +78,19 @@ using CollisionLog = std::function<void(const std::vector<CollisionRecord>&)>;
 // Throws UnphysicalStateError (other than a hard-sphere collapse) if a realisation turns unphysical.
 CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {});
 
+// How n_tot changes between two counts of the same launches at k1 < k2 (same spec otherwise).
+struct KSlope {
+  double e = 0, k1 = 0, k2 = 0;
+  // Mean and standard error of the per-launch increase of n_tot per decade of k; launches that
+  // collapsed at either k are left out (NaN when none is left).
+  double per_log10_k = 0, error = 0;
+  int launches = 0;
+  // alpha = d ln n_tot / d ln k from the two means (for n_tot ~ k^alpha); its error combines the
+  // two standard errors as if independent, an upper bound since the launches are shared.
+  double alpha = 0, alpha_error = 0;
+};
+KSlope k_slope(const CollapseResult& a, const CollapseResult& b);
+
 // The initial state of realisation r.
 ChainState collapse_initial_state(const CollapseSpec& spec, int r);
 

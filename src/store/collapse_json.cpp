@@ -6,9 +6,7 @@
 
 namespace granchain {
 
-namespace {
-nlohmann::json real(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-}  // namespace
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
 nlohmann::json collapse_result_to_json(const CollapseResult& r) {
   const CollapseSpec& s = r.spec;
@@ -22,7 +20,7 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
            {{"setup", setup_name(s.setup)},
             {"N", s.params.N},
             {"e", s.params.e},
-            {"k", real(s.params.k)},
+            {"k", number_or_null(s.params.k)},
             {"m", s.params.m},
             {"d", s.params.d},
             {"a", s.launch.a},
@@ -34,10 +32,10 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
             {"engine", s.engine.name},
             {"dt_factor", s.engine.dt_factor},
             {"tc", s.engine.hard.tc}}},
-          {"derived", {{"D", real(r.law.D)}, {"tau_c", r.law.tau_c}}},
+          {"derived", {{"D", number_or_null(r.law.D)}, {"tau_c", r.law.tau_c}}},
           {"observables",
-           {{"n_tot", real(r.n_tot_mean)},
-            {"n_tot_err", real(r.n_tot_error)},
+           {{"n_tot", number_or_null(r.n_tot_mean)},
+            {"n_tot_err", number_or_null(r.n_tot_error)},
             {"n_tot_min", r.n_tot_min},
             {"n_tot_max", r.n_tot_max},
             {"collapsed", r.collapsed},

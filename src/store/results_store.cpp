@@ -233,9 +233,21 @@ void ResultsStore::exec(const char* sql) {
   }
 }
 
-std::int64_t ResultsStore::insert_run(const RunResult& r) {
+template <class Write>
+std::int64_t ResultsStore::in_transaction(Write write) {
   exec("BEGIN IMMEDIATE");
   try {
+    const std::int64_t id = write();
+    exec("COMMIT");
+    return id;
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::int64_t ResultsStore::insert_run(const RunResult& r) {
+  return in_transaction([&] {
     Statement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
         T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
         n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
@@ -293,17 +305,12 @@ std::int64_t ResultsStore::insert_run(const RunResult& r) {
       prof.bind(8, p.kinetic.error);
       prof.run();
     }
-    exec("COMMIT");
     return id;
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
+  });
 }
 
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
-  exec("BEGIN IMMEDIATE");
-  try {
+  return in_transaction([&] {
     Statement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
         dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
         wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
@@ -345,12 +352,8 @@ std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
       real.bind(6, o.t_stop);
       real.run();
     }
-    exec("COMMIT");
     return id;
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
+  });
 }
 
 std::int64_t ResultsStore::count_runs() {

@@ -45,6 +45,9 @@ class ResultsStore {
 
  private:
   void exec(const char* sql);
+  // Runs write() between BEGIN IMMEDIATE and COMMIT, rolling back if it throws; returns its id.
+  template <class Write>
+  std::int64_t in_transaction(Write write);
   sqlite3* db_ = nullptr;
   std::string path_;
 };
