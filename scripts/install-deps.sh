@@ -7,6 +7,7 @@ packages=(
   g++ cmake make git ca-certificates
   libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3
   libgtest-dev libgmock-dev
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -9,47 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli_fixture.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
-
-struct CliResult {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("granchain_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-  }
-  CliResult run(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && '" GRANCHAIN_BINARY "' " + args + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(cmd.c_str());
-    CliResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
-    fs::remove(dir_ / "stdout.txt");
-    fs::remove(dir_ / "stderr.txt");
-    return r;
-  }
-  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
-  // Files the run left in its folder (besides the ones the test wrote).
-  std::size_t files() const { return std::distance(fs::directory_iterator(dir_), fs::directory_iterator()); }
-
-  fs::path dir_;
-};
 
 const std::string kQuick = "run --N 4 --k 1e4 --e 0.8 --T 20 --transient 2 ";
 

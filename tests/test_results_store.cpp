@@ -7,21 +7,12 @@
 
 #include "simulation/driven_run.hpp"
 #include "store/results_store.hpp"
+#include "temp_dir.hpp"
 
 using namespace granchain;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("granchain_store_" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(reinterpret_cast<std::uintptr_t>(this)));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 RunResult small_run() {
   RunSpec s;

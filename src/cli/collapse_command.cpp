@@ -1,4 +1,4 @@
-#include "cli/collapse_command.hpp"
+#include "cli/subcommand.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -13,7 +13,6 @@
 
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
-#include "cli/run_command.hpp"
 #include "cli/value_list.hpp"
 #include "engines/engine.hpp"
 #include "simulation/collapse_run.hpp"
@@ -23,7 +22,9 @@
 
 namespace granchain {
 
-struct CollapseCommand::Impl {
+namespace {
+
+struct CollapseFlags {
   int N = 3;
   std::string e = "0.03";
   std::string k = "1e4:1e10:x10";
@@ -45,7 +46,13 @@ struct CollapseCommand::Impl {
   bool no_db = false, quiet = false;
 };
 
-CollapseCommand::CollapseCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
+int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_);
+
+}  // namespace
+
+Subcommand add_collapse_command(CLI::App& app) {
+  auto impl_ = std::make_shared<CollapseFlags>();
+  CLI::App* sub_;
   sub_ = app.add_subcommand("collapse", "Count the collisions n_tot of an inelastic collapse in free space (or on a wall), "
                                         "averaged over random launches.");
   auto& o = *impl_;
@@ -99,6 +106,7 @@ CollapseCommand::CollapseCommand(CLI::App& app) : impl_(std::make_shared<Impl>()
       "from the two means (for n_tot ~ k^alpha); for N = 3 below e_c(3) the slope is\n"
       "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n"
       "Exit codes: 0 ok, 2 bad input (nothing written), 3 unphysical (nothing written), 4 store failed.");
+  return {sub_, [impl_] { return execute_collapse(impl_); }};
 }
 
 namespace {
@@ -107,7 +115,9 @@ std::string num(double x, const char* f = "{:.4f}") { return std::isfinite(x) ? 
 
 }  // namespace
 
-int CollapseCommand::execute() {
+namespace {
+
+int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   auto& o = *impl_;
   const bool json_requested = o.json_option->count() > 0;
   const bool json_stdout = json_requested && o.json_path.empty();
@@ -314,5 +324,7 @@ int CollapseCommand::execute() {
   if (!o.quiet && !json_stdout && !stored.empty()) fmt::print("\nwritten: {}\n", stored);
   return kExitOk;
 }
+
+}  // namespace
 
 }  // namespace granchain

@@ -12,7 +12,8 @@
 namespace granchain {
 
 // key (flag spelling) -> value text. Throws InputError naming the file and line on any problem.
-std::map<std::string, std::string> read_config_file(const std::string& path);
+// option names the flag in messages. Arrays ([3, 4, 5] or ["exact", "hard"]) become comma lists.
+std::map<std::string, std::string> read_config_file(const std::string& path, const std::string& option = "--config");
 
 // Flag spelling of a key: underscores become dashes.
 std::string normalize_key(std::string key);

@@ -4,19 +4,23 @@
 
 #include <algorithm>
 #include <exception>
+#include <vector>
 
-#include "cli/collapse_command.hpp"
-#include "cli/run_command.hpp"
-#include "cli/theory_command.hpp"
+#include "cli/subcommand.hpp"
 #include "version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"granchain: inelastic collapse of soft and hard spheres on a vertical line (Wakou et al.)"};
   app.set_version_flag("--version", granchain::code_version());
   app.require_subcommand(1);
-  granchain::RunCommand run(app);
-  granchain::TheoryCommand theory(app);
-  granchain::CollapseCommand collapse(app);
+  const std::vector<granchain::Subcommand> commands = {
+      granchain::add_run_command(app),   granchain::add_theory_command(app), granchain::add_collapse_command(app),
+      granchain::add_sweep_command(app), granchain::add_merge_command(app),  granchain::add_export_command(app)};
+  const auto selected = [&]() -> const granchain::Subcommand* {
+    for (const auto& c : commands)
+      if (c.selected()) return &c;
+    return nullptr;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -28,14 +32,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string msg = e.what();
     std::replace(msg.begin(), msg.end(), '\n', ' ');
-    const char* sub = run.selected() ? "run " : theory.selected() ? "theory " : collapse.selected() ? "collapse " : "";
-    fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, sub);
+    const auto* c = selected();
+    fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, c ? c->app->get_name() + " " : "");
     return granchain::kExitBadInput;
   }
   try {
-    if (run.selected()) return run.execute();
-    if (theory.selected()) return theory.execute();
-    if (collapse.selected()) return collapse.execute();
+    if (const auto* c = selected()) return c->execute();
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return 1;

@@ -1,4 +1,4 @@
-#include "cli/run_command.hpp"
+#include "cli/subcommand.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -19,7 +19,9 @@
 
 namespace granchain {
 
-struct RunCommand::Impl {
+namespace {
+
+struct RunFlags {
   std::map<std::string, std::string> flag_values;  // parameter name -> text from the command line
   std::map<std::string, CLI::Option*> flag_options;
   std::string config_path;
@@ -30,7 +32,13 @@ struct RunCommand::Impl {
   bool progress_lines = false;
 };
 
-RunCommand::RunCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
+int execute_run(const std::shared_ptr<RunFlags>& impl_);
+
+}  // namespace
+
+Subcommand add_run_command(CLI::App& app) {
+  auto impl_ = std::make_shared<RunFlags>();
+  CLI::App* sub_;
   sub_ = app.add_subcommand("run", "Simulate the driven column once and measure n_coll and the profiles.");
   sub_->footer(
       "Units: m = d = g = 1 unless set. The floor at z = 0 touches the lower edge of particle 1\n"
@@ -57,6 +65,7 @@ RunCommand::RunCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
   sub_->add_flag("--quiet,-q", impl.quiet, "print no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines,
                  "print progress on standard error: a line every 10 s when it is not a terminal");
+  return {sub_, [impl_] { return execute_run(impl_); }};
 }
 
 namespace {
@@ -91,7 +100,9 @@ class ProgressPrinter {
 
 }  // namespace
 
-int RunCommand::execute() {
+namespace {
+
+int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   auto& impl = *impl_;
   RunOptions opts;
   const bool json_requested = impl.json_option->count() > 0;
@@ -164,5 +175,7 @@ int RunCommand::execute() {
   if (!impl.quiet && !json_stdout) fmt::print("{}", run_summary(result, stored));
   return kExitOk;
 }
+
+}  // namespace
 
 }  // namespace granchain

@@ -1,4 +1,4 @@
-#include "cli/theory_command.hpp"
+#include "cli/subcommand.hpp"
 
 #include <fmt/format.h>
 
@@ -9,19 +9,26 @@
 
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
-#include "cli/run_command.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {
 
-struct TheoryCommand::Impl {
+namespace {
+
+struct TheoryFlags {
   std::vector<int> N{2, 3, 4, 5, 10, 25, 100};
   std::vector<double> e{0.01, 0.03, 0.05};
   std::string json_path;
   CLI::Option* json_option = nullptr;
 };
 
-TheoryCommand::TheoryCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
+int execute_theory(const std::shared_ptr<TheoryFlags>& impl_);
+
+}  // namespace
+
+Subcommand add_theory_command(CLI::App& app) {
+  auto impl_ = std::make_shared<TheoryFlags>();
+  CLI::App* sub_;
   sub_ = app.add_subcommand("theory", "Print the paper's closed forms for inelastic collapse for given N and e.");
   auto& impl = *impl_;
   sub_->add_option("--N", impl.N, "particle numbers (comma-separated list); integers 1 <= N <= 1e9; default 2,3,4,5,10,25,100")
@@ -43,6 +50,7 @@ TheoryCommand::TheoryCommand(CLI::App& app) : impl_(std::make_shared<Impl>()) {
       "m*, m'* (Appendix A), q, Eq. (def_q), f (Appendix B), and the slope of n_tot against ln k and\n"
       "log10 k, Eq. (ntot-log): -1/(2 ln q). The values are not stored in the results store.\n"
       "Exit codes: 0 ok, 2 bad input (nothing written).");
+  return {sub_, [impl_] { return execute_theory(impl_); }};
 }
 
 namespace {
@@ -101,7 +109,9 @@ std::string theory_table(const nlohmann::json& j) {
 
 }  // namespace
 
-int TheoryCommand::execute() {
+namespace {
+
+int execute_theory(const std::shared_ptr<TheoryFlags>& impl_) {
   auto& impl = *impl_;
   const bool json_requested = impl.json_option->count() > 0;
   const bool json_stdout = json_requested && impl.json_path.empty();
@@ -126,5 +136,7 @@ int TheoryCommand::execute() {
   fmt::print("{}", theory_table(j));
   return kExitOk;
 }
+
+}  // namespace
 
 }  // namespace granchain

@@ -41,6 +41,15 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+// A grid value rounded to 12 significant digits: 0.8 + 11 * 0.002 becomes the double nearest to
+// 0.822, the same number a user typing 0.822 gets, so stored points can be selected by value.
+double tidy(double x) {
+  const std::string t = fmt::format("{:.12g}", x);
+  double y = x;
+  std::from_chars(t.data(), t.data() + t.size(), y);
+  return y;
+}
+
 }  // namespace
 
 std::vector<double> parse_value_list(const std::string& text, const std::string& option) {
@@ -67,7 +76,7 @@ std::vector<double> parse_value_list(const std::string& text, const std::string&
       const double n = std::floor(std::log(last / first) / std::log(step) + 1e-9);
       count = static_cast<std::size_t>(n) + 1;
       if (count > kMaxValues) throw InputError(fmt::format("{} = '{}': more than {} values", option, text, kMaxValues));
-      for (std::size_t i = 0; i < count; ++i) values.push_back(first * std::pow(step, static_cast<double>(i)));
+      for (std::size_t i = 0; i < count; ++i) values.push_back(tidy(first * std::pow(step, static_cast<double>(i))));
     } else {
       if (!(step > 0 && last >= first)) {
         throw InputError(fmt::format("{} = '{}': a range needs first <= last and a step > 0", option, text));
@@ -75,8 +84,8 @@ std::vector<double> parse_value_list(const std::string& text, const std::string&
       const double n = std::floor((last - first) / step + 1e-9);
       count = static_cast<std::size_t>(n) + 1;
       if (count > kMaxValues) throw InputError(fmt::format("{} = '{}': more than {} values", option, text, kMaxValues));
-      // first + i * step (not accumulated), so 0.80:0.90:0.002 gives 0.8 + 0.002 i exactly rounded.
-      for (std::size_t i = 0; i < count; ++i) values.push_back(first + static_cast<double>(i) * step);
+      // first + i * step (not accumulated), then tidied: 0.80:0.90:0.002 gives 0.8, 0.802, ..., 0.9.
+      for (std::size_t i = 0; i < count; ++i) values.push_back(tidy(first + static_cast<double>(i) * step));
     }
   }
   return values;

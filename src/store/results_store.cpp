@@ -6,10 +6,13 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <fmt/format.h>
 
 #include "store/collapse_json.hpp"
 #include "store/run_json.hpp"
+#include "simulation/run_key.hpp"
+#include "store/sqlite_statement.hpp"
 #include "version.hpp"
 
 namespace granchain {
@@ -68,6 +71,12 @@ CREATE TABLE IF NOT EXISTS profiles(
   K_err REAL,
   PRIMARY KEY(run_id, i)
 );
+CREATE TABLE IF NOT EXISTS run_points(
+  point_key TEXT PRIMARY KEY,
+  run_id INTEGER NOT NULL UNIQUE REFERENCES runs(id) ON DELETE CASCADE,
+  sweep_seed INTEGER,
+  replica INTEGER
+);
 CREATE TABLE IF NOT EXISTS collapse_runs(
   id INTEGER PRIMARY KEY,
   created_utc TEXT NOT NULL,
@@ -105,41 +114,6 @@ CREATE TABLE IF NOT EXISTS collapse_realizations(
   PRIMARY KEY(run_id, realization)
 );
 )sql";
-
-// Owns one prepared statement.
-class Statement {
- public:
-  Statement(sqlite3* db, const char* sql) : db_(db) {
-    if (sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr) != SQLITE_OK)
-      throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db)));
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-  void bind(int i, double x) { sqlite3_bind_double(stmt_, i, x); }
-  void bind(int i, std::int64_t x) { sqlite3_bind_int64(stmt_, i, x); }
-  void bind(int i, const std::string& s) { sqlite3_bind_text(stmt_, i, s.c_str(), -1, SQLITE_TRANSIENT); }
-  void run() {
-    if (sqlite3_step(stmt_) != SQLITE_DONE) throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db_)));
-    sqlite3_reset(stmt_);
-    sqlite3_clear_bindings(stmt_);
-  }
-  bool row() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db_)));
-  }
-  std::int64_t column_int(int i) { return sqlite3_column_int64(stmt_, i); }
-  std::string column_text(int i) {
-    const auto* p = sqlite3_column_text(stmt_, i);
-    return p ? reinterpret_cast<const char*>(p) : "";
-  }
-
- private:
-  sqlite3* db_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
 
 std::string utc_now() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -248,7 +222,52 @@ std::int64_t ResultsStore::in_transaction(Write write) {
 
 std::int64_t ResultsStore::insert_run(const RunResult& r) {
   return in_transaction([&] {
-    Statement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
+    const std::int64_t id = append_run(r);
+    SqlStatement key(db_, "INSERT OR IGNORE INTO run_points(point_key, run_id) VALUES(?,?)");
+    key.bind(1, point_key(r.spec));
+    key.bind(2, id);
+    key.run();
+    return id;
+  });
+}
+
+ResultsStore::Stored ResultsStore::insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed,
+                                                      int replica) {
+  Stored out;
+  out.id = in_transaction([&]() -> std::int64_t {
+    SqlStatement find(db_, "SELECT run_id FROM run_points WHERE point_key = ?");
+    find.bind(1, key);
+    if (find.row()) return find.column_int(0);
+    const std::int64_t id = append_run(r);
+    SqlStatement add(db_, "INSERT INTO run_points(point_key, run_id, sweep_seed, replica) VALUES(?,?,?,?)");
+    add.bind(1, key);
+    add.bind(2, id);
+    add.bind(3, static_cast<std::int64_t>(base_seed));
+    add.bind(4, static_cast<std::int64_t>(replica));
+    add.run();
+    out.inserted = true;
+    return id;
+  });
+  return out;
+}
+
+std::unordered_set<std::string> ResultsStore::point_keys() {
+  std::unordered_set<std::string> keys;
+  SqlStatement st(db_, "SELECT point_key FROM run_points");
+  while (st.row()) keys.insert(st.column_text(0));
+  return keys;
+}
+
+std::map<std::string, ResultsStore::PointSummary> ResultsStore::point_summaries() {
+  std::map<std::string, PointSummary> out;
+  SqlStatement st(db_, "SELECT p.point_key, r.id, r.n_coll, r.n_coll_err FROM run_points p JOIN runs r ON r.id = p.run_id");
+  while (st.row()) out[st.column_text(0)] = PointSummary{st.column_int(1), st.column_double(2), st.column_double(3)};
+  return out;
+}
+
+std::int64_t ResultsStore::append_run(const RunResult& r) {
+  {
+    SqlStatement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
         T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
         n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
         particle_collisions, floor_hits, steps, events, wall_seconds, result_json)
@@ -292,7 +311,7 @@ std::int64_t ResultsStore::insert_run(const RunResult& r) {
     run.run();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
 
-    Statement prof(db_, "INSERT INTO profiles(run_id, i, z_mean, z_mean_err, z_std, z_std_err, K, K_err) VALUES(?,?,?,?,?,?,?,?)");
+    SqlStatement prof(db_, "INSERT INTO profiles(run_id, i, z_mean, z_mean_err, z_std, z_std_err, K, K_err) VALUES(?,?,?,?,?,?,?,?)");
     for (std::size_t i = 0; i < r.profiles.size(); ++i) {
       const ParticleProfile& p = r.profiles[i];
       prof.bind(1, id);
@@ -306,12 +325,12 @@ std::int64_t ResultsStore::insert_run(const RunResult& r) {
       prof.run();
     }
     return id;
-  });
+  }
 }
 
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   return in_transaction([&] {
-    Statement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
+    SqlStatement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
         dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
         wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
     const CollapseSpec& s = r.spec;
@@ -341,7 +360,7 @@ std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
     row.bind(c++, collapse_result_to_json(r).dump());
     row.run();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
-    Statement real(db_, "INSERT INTO collapse_realizations(run_id, realization, particle_collisions, wall_hits, collapsed, t_stop) VALUES(?,?,?,?,?,?)");
+    SqlStatement real(db_, "INSERT INTO collapse_realizations(run_id, realization, particle_collisions, wall_hits, collapsed, t_stop) VALUES(?,?,?,?,?,?)");
     for (std::size_t i = 0; i < r.outcomes.size(); ++i) {
       const RealizationOutcome& o = r.outcomes[i];
       real.bind(1, id);
@@ -357,7 +376,7 @@ std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
 }
 
 std::int64_t ResultsStore::count_runs() {
-  Statement st(db_, "SELECT count(*) FROM runs");
+  SqlStatement st(db_, "SELECT count(*) FROM runs");
   st.row();
   return st.column_int(0);
 }

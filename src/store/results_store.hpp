@@ -4,7 +4,9 @@
 // run leaves no partial row (SQLite's atomic commit holds even through kill -9 or power loss).
 #include <cstdint>
 #include <stdexcept>
+#include <map>
 #include <string>
+#include <unordered_set>
 
 #include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
@@ -35,8 +37,24 @@ class ResultsStore {
   ResultsStore(const ResultsStore&) = delete;
   ResultsStore& operator=(const ResultsStore&) = delete;
 
-  // Appends one run with its profiles in one transaction and returns its id.
+  // Appends one run with its profiles in one transaction and returns its id. Its point key
+  // (sweep/sweep_grid.hpp) is recorded too unless an earlier run already holds it.
   std::int64_t insert_run(const RunResult& r);
+  // A sweep point: in one transaction, appends the run, its profiles and its key unless a run
+  // with that key is already stored. Returns the run's id and whether it was appended now.
+  struct Stored {
+    std::int64_t id = 0;
+    bool inserted = false;
+  };
+  Stored insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed, int replica);
+  // Keys of every stored point.
+  std::unordered_set<std::string> point_keys();
+  struct PointSummary {
+    std::int64_t id = 0;
+    double n_coll = 0, n_coll_err = 0;  // NaN where the store holds NULL
+  };
+  // Every stored point by key, with its run id and n_coll.
+  std::map<std::string, PointSummary> point_summaries();
   // Appends one collapse count (granchain collapse) with its per-realisation counts, in one
   // transaction, and returns its id.
   std::int64_t insert_collapse(const CollapseResult& r);
@@ -45,6 +63,7 @@ class ResultsStore {
 
  private:
   void exec(const char* sql);
+  std::int64_t append_run(const RunResult& r);  // inside a transaction
   // Runs write() between BEGIN IMMEDIATE and COMMIT, rolling back if it throws; returns its id.
   template <class Write>
   std::int64_t in_transaction(Write write);

@@ -1,5 +1,7 @@
 #include "store/run_json.hpp"
 
+#include <limits>
+
 #include "version.hpp"
 
 namespace granchain {
@@ -25,7 +27,8 @@ json run_spec_to_json(const RunSpec& s) {
               {"engine", s.engine.name},
               {"dt_factor", s.engine.dt_factor},
               {"sample_interval", s.sample_interval},
-              {"bins", s.bins}};
+              {"bins", s.bins},
+              {"tc", s.engine.hard.tc}};
 }
 
 json run_result_to_json(const RunResult& r) {
@@ -51,6 +54,68 @@ json run_result_to_json(const RunResult& r) {
                                {"floor_hits", r.floor_hits}}},
               {"profiles", profiles},
               {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}}}};
+}
+
+namespace {
+
+// JSON has no infinity or NaN: nlohmann writes them as null. Reading back, a null k is the hard
+// spheres' infinity and any other null is NaN (an undefined error bar).
+double real_or(const json& j, const char* key, double if_null) {
+  const json& v = j.at(key);
+  return v.is_null() ? if_null : v.get<double>();
+}
+
+Estimate estimate_from_json(const json& j) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  return Estimate{real_or(j, "value", nan), real_or(j, "error", nan), j.at("blocks").get<int>(),
+                  j.at("converged").get<bool>()};
+}
+
+}  // namespace
+
+RunResult run_result_from_json(const json& j) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  RunResult r;
+  const json& p = j.at("parameters");
+  RunSpec& s = r.spec;
+  s.params.N = p.at("N").get<int>();
+  s.params.e = p.at("e").get<double>();
+  s.params.k = real_or(p, "k", std::numeric_limits<double>::infinity());
+  s.params.kT0 = p.at("T0").get<double>();
+  s.params.m = p.at("m").get<double>();
+  s.params.d = p.at("d").get<double>();
+  s.params.g = p.at("g").get<double>();
+  s.T = p.at("T").get<double>();
+  s.transient = p.at("transient").get<double>();
+  s.seed = p.at("seed").get<std::uint64_t>();
+  s.engine.name = p.at("engine").get<std::string>();
+  s.engine.dt_factor = p.at("dt_factor").get<double>();
+  s.engine.hard.tc = p.value("tc", 0.0);
+  s.sample_interval = p.at("sample_interval").get<double>();
+  s.bins = p.at("bins").get<int>();
+  r.law = contact_law(s.params);
+  const json& d = j.at("derived");
+  r.law.D = real_or(d, "D", std::numeric_limits<double>::infinity());
+  r.law.tau_c = real_or(d, "tau_c", nan);
+  r.time_step = d.at("dt").get<double>();
+  r.sample_interval = d.at("sample_interval").get<double>();
+  r.samples = d.at("samples").get<std::int64_t>();
+  const json& o = j.at("observables");
+  r.n_coll = estimate_from_json(o.at("n_coll"));
+  r.floor_rate = estimate_from_json(o.at("floor_rate"));
+  r.pp_rate = estimate_from_json(o.at("pp_rate"));
+  r.particle_collisions = o.at("particle_collisions").get<std::uint64_t>();
+  r.floor_hits = o.at("floor_hits").get<std::uint64_t>();
+  for (const json& q : j.at("profiles")) {
+    r.profiles.push_back(ParticleProfile{Estimate{real_or(q, "z_mean", nan), real_or(q, "z_mean_err", nan), 0, false},
+                                         Estimate{real_or(q, "z_std", nan), real_or(q, "z_std_err", nan), 0, false},
+                                         Estimate{real_or(q, "K", nan), real_or(q, "K_err", nan), 0, false}});
+  }
+  const json& c = j.at("cost");
+  r.steps = c.at("steps").get<std::uint64_t>();
+  r.events = c.at("events").get<std::uint64_t>();
+  r.wall_seconds = c.at("wall_seconds").get<double>();
+  return r;
 }
 
 }  // namespace granchain

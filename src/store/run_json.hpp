@@ -12,5 +12,9 @@ nlohmann::json run_spec_to_json(const RunSpec& spec);
 // per-particle profiles, cost. Wall time and code version are included; the physics is not
 // affected by them.
 nlohmann::json run_result_to_json(const RunResult& r);
+// The inverse, for what the store and the MPI sweep need: every number round-trips exactly
+// (nlohmann writes doubles with 17 significant digits). Per-particle profile estimates keep value
+// and error only (their block counts are not in the JSON).
+RunResult run_result_from_json(const nlohmann::json& j);
 
 }  // namespace granchain

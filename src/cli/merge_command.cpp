@@ -1,0 +1,55 @@
+#include "cli/subcommand.hpp"
+
+#include <fmt/format.h>
+
+#include "store/store_merge.hpp"
+
+namespace granchain {
+
+namespace {
+
+struct MergeFlags {
+  std::string into;
+  std::vector<std::string> sources;
+  bool quiet = false;
+};
+
+int execute_merge(const std::shared_ptr<MergeFlags>& impl_);
+
+}  // namespace
+
+Subcommand add_merge_command(CLI::App& app) {
+  auto impl_ = std::make_shared<MergeFlags>();
+  CLI::App* sub_;
+  sub_ = app.add_subcommand("merge", "Join results stores (job-array shards, other machines) into one.");
+  sub_->footer(
+      "Every run (with its profiles and point key) and every collapse count (with its realisations) of the\n"
+      "sources is copied into --into, which is created if missing. A point held by both with identical\n"
+      "results is kept once, so merging again is harmless; with different results the merge stops, names\n"
+      "both runs and the first differing number, and writes nothing (exit 2). Sources are only read.\n"
+      "Example (job array): granchain merge --into all.db shard-*.db");
+  sub_->add_option("--into", impl_->into, "the store to merge into (created if missing)")->required()->type_name("FILE");
+  sub_->add_option("sources", impl_->sources, "stores to merge from")->required()->type_name("FILE...");
+  sub_->add_flag("--quiet,-q", impl_->quiet, "print nothing on success");
+  return {sub_, [impl_] { return execute_merge(impl_); }};
+}
+
+namespace {
+
+int execute_merge(const std::shared_ptr<MergeFlags>& impl_) {
+  try {
+    const MergeReport r = merge_stores(impl_->into, impl_->sources);
+    if (!impl_->quiet)
+      fmt::print("merged {} store{} into {}: {} runs added, {} already there; {} collapse counts added, {} already there\n",
+                 impl_->sources.size(), impl_->sources.size() == 1 ? "" : "s", impl_->into, r.runs_added,
+                 r.runs_already_there, r.collapse_added, r.collapse_already_there);
+    return kExitOk;
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+}
+
+}  // namespace
+
+}  // namespace granchain

@@ -1,0 +1,31 @@
+#pragma once
+// The subcommands of `granchain`. Each add_*_command registers its flags on the app and returns
+// the subcommand with the function that runs it once the command line has been parsed.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace granchain {
+
+// Exit codes of the command line.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitBadInput = 2,     // bad flag, value, config file or output path; nothing written
+  kExitUnphysical = 3,   // the simulation turned unphysical; no result printed or stored
+  kExitStoreFailed = 4,  // the results store could not be written; the run is not stored
+};
+
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> execute;  // returns the exit code
+  bool selected() const { return app->parsed(); }
+};
+
+Subcommand add_run_command(CLI::App& app);       // one driven-column run
+Subcommand add_theory_command(CLI::App& app);    // the paper's closed forms
+Subcommand add_collapse_command(CLI::App& app);  // free-space and wall collapse counts
+Subcommand add_sweep_command(CLI::App& app);     // grids of runs: threads, MPI, shards, resuming
+Subcommand add_merge_command(CLI::App& app);     // joining results stores
+Subcommand add_export_command(CLI::App& app);    // stored results as CSV or JSON
+
+}  // namespace granchain

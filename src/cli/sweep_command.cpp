@@ -1,0 +1,306 @@
+#include "cli/subcommand.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <thread>
+
+#include "cli/config_file.hpp"
+#include "cli/input_error.hpp"
+#include "cli/run_options.hpp"
+#include "store/results_store.hpp"
+#include "sweep/mpi_sweep.hpp"
+#include "sweep/sweep_grid.hpp"
+#include "sweep/sweep_runner.hpp"
+
+namespace granchain {
+
+namespace {
+
+struct SweepFlags {
+  std::map<std::string, std::string> flag_values;
+  std::map<std::string, CLI::Option*> flag_options;
+  std::string sweep_path;
+  std::string replicas, threads, shard;
+  double progress_every = 0;
+  bool dry_run = false, quiet = false, progress_lines = false;
+};
+
+int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_);
+
+}  // namespace
+
+namespace {
+
+bool is_grid(const std::string& name) {
+  const auto& g = sweep_grid_parameters();
+  return std::find(g.begin(), g.end(), name) != g.end();
+}
+
+long long integer_in(const std::string& option, const std::string& text, long long lo, long long hi) {
+  long long x = 0;
+  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || x < lo || x > hi)
+    throw InputError(fmt::format("{} = '{}' is not valid; valid range: integer {} <= {} <= {}", option, text, lo,
+                                 option.substr(2), hi));
+  return x;
+}
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s)) return "?";
+  if (s < 10) return fmt::format("{:.1f} s", s);
+  if (s < 120) return fmt::format("{:.0f} s", s);
+  if (s < 7200) return fmt::format("{:.1f} min", s / 60);
+  return fmt::format("{:.1f} h", s / 3600);
+}
+
+class SweepProgressPrinter {
+ public:
+  explicit SweepProgressPrinter(bool tty) : tty_(tty) {}
+  void operator()(const SweepProgress& p) {
+    const std::string line = fmt::format("sweep: {}/{} points{}, elapsed {}, ETA {}, {:.3g} collisions/s",
+                                         p.done, p.total, p.failed ? fmt::format(" ({} failed)", p.failed) : "",
+                                         format_duration(p.elapsed), p.final ? "0 s" : format_duration(p.eta),
+                                         p.collisions_per_second);
+    if (tty_) {
+      fmt::print(stderr, "\r{:<100}{}", line, p.final ? "\n" : "");
+    } else {
+      fmt::print(stderr, "{}\n", line);
+    }
+    std::fflush(stderr);
+  }
+
+ private:
+  bool tty_;
+};
+
+}  // namespace
+
+Subcommand add_sweep_command(CLI::App& app) {
+  auto impl_ = std::make_shared<SweepFlags>();
+  CLI::App* sub_;
+  sub_ = app.add_subcommand("sweep", "Run a grid of driven-column runs (N, e, k, T0, T, engine, replica) into the results store.");
+  sub_->footer(
+      "Grid parameters (N, e, k, T0, T, engine) take lists and ranges: 3,4,5  0.80:0.90:0.002 (first:last:step)\n"
+      "1e5:1e10:x10 (first:last:xFACTOR); every other parameter takes one value, as in `granchain run`.\n"
+      "Each point is one run, stored in one transaction with its key (all its parameters and seed): a\n"
+      "sweep started again with the same arguments runs only the points the store lacks, so a killed\n"
+      "sweep (even kill -9) is resumed by repeating its command. Each point's seed derives from --seed and\n"
+      "the point's own parameters and replica number, so results depend neither on threads, ranks, shards\n"
+      "nor order. Points run longest first (estimated from N, T, e, k and the engine).\n"
+      "MPI: mpirun -np P granchain sweep ... : rank 0 writes the store and hands out points one at a time;\n"
+      "every other rank runs one point at a time (give one rank per core). --threads sets rank 0's own\n"
+      "workers (default 1 under MPI). Job arrays: --shard i/n runs share i of n; join the stores with\n"
+      "`granchain merge`. Exit codes: 0 ok, 2 bad input (nothing run), 3 some points turned unphysical\n"
+      "(the others are stored), 4 the results store could not be written.");
+  auto& impl = *impl_;
+  for (const ParameterInfo& p : run_parameters()) {
+    std::string help = p.help;
+    if (is_grid(p.name)) help = (p.name == "engine" ? "comma LIST; " : "LIST or range; ") + help;
+    if (p.name == "seed") help = "base seed: each point's seed derives from it, the point's parameters and replica; "
+                                 "integer 0 <= seed <= 9223372036854775807; default 1";
+    impl.flag_options[p.name] = sub_->add_option("--" + p.name, impl.flag_values[p.name], help)
+                                    ->type_name(is_grid(p.name) ? "LIST" : p.type)
+                                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  sub_->add_option("--sweep", impl.sweep_path,
+                   "read the sweep from a JSON or TOML file: keys as the flags (and replicas), lists as strings "
+                   "(\"0.8:0.9:0.01\") or arrays; flags given here override it")
+      ->type_name("FILE");
+  sub_->add_option("--replicas", impl.replicas, "independent runs (different seeds) per grid point; integer 1 <= replicas <= 1000000; default 1")
+      ->type_name("INT");
+  sub_->add_option("--threads", impl.threads, "points run at once on this machine; integer 1 <= threads <= 1024; default all cores "
+                                              "(1 on rank 0 under MPI)")
+      ->type_name("INT");
+  sub_->add_option("--shard", impl.shard, "run only share i of n of the grid (1 <= i <= n <= 100000), for job arrays")
+      ->type_name("i/n");
+  sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost) and what the store already holds; run nothing");
+  sub_->add_flag("--quiet,-q", impl.quiet, "print no table of results, no summary, and no progress unless --progress is given");
+  sub_->add_flag("--progress", impl.progress_lines, "print progress on standard error even with --quiet");
+  sub_->add_option("--progress-every", impl.progress_every,
+                   "seconds between progress reports; > 0; default 0.5 on a terminal, 10 otherwise")
+      ->type_name("SECONDS");
+  return {sub_, [impl_, sub_] { return execute_sweep(impl_, sub_); }};
+}
+
+namespace {
+
+int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
+  auto& impl = *impl_;
+  MpiWorld world;
+  const bool rank0 = world.rank() == 0;
+  auto fail = [&](const std::string& message, int code) {
+    if (rank0) fmt::print(stderr, "granchain: error: {}\n", message);
+    return code;
+  };
+
+  SweepDefinition def;
+  std::string db_path = "granchain.db";
+  int threads = 0, shard_i = 1, shard_n = 1;
+  std::vector<SweepPoint> points;
+  try {
+    if (launched_by_mpi_launcher() && !built_with_mpi())
+      throw InputError("sweep: started by an MPI launcher, but this granchain was built without MPI "
+                       "(install libopenmpi-dev and rebuild); run it without mpirun to use threads");
+    std::map<std::string, std::string> from_file;
+    if (!impl.sweep_path.empty()) from_file = read_config_file(impl.sweep_path, "--sweep");
+    auto take = [&](const std::string& name, const std::string& flag_text, bool given) -> std::optional<RawValue> {
+      if (given) return RawValue{flag_text, ""};
+      const auto it = from_file.find(name);
+      if (it != from_file.end()) return RawValue{it->second, fmt::format("sweep file '{}'", impl.sweep_path)};
+      return std::nullopt;
+    };
+    for (const auto& [key, value] : from_file) {
+      const bool known = key == "replicas" || impl.flag_options.count(key);
+      if (!known) throw InputError(fmt::format("--sweep: '{}': unknown parameter '{}'", impl.sweep_path, key));
+    }
+    for (const auto& [name, opt] : impl.flag_options) {
+      if (auto v = take(name, impl.flag_values[name], opt->count() > 0)) {
+        if (name == "seed") {
+          def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", v->text, 0, 9223372036854775807LL));
+        } else if (name == "db") {
+          db_path = v->text;
+          if (db_path.empty()) throw InputError("--db: the path is empty; give a file name");
+        } else {
+          def.raw[name] = *v;
+        }
+      }
+    }
+    if (auto v = take("replicas", impl.replicas, !impl.replicas.empty()))
+      def.replicas = static_cast<int>(integer_in("--replicas", v->text, 1, 1000000));
+    if (!impl.threads.empty()) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
+    if (!impl.shard.empty()) {
+      const auto slash = impl.shard.find('/');
+      const std::string range = "i/n with integers 1 <= i <= n <= 100000";
+      if (slash == std::string::npos) throw InputError(fmt::format("--shard = '{}' is not valid; valid: {}", impl.shard, range));
+      shard_n = static_cast<int>(integer_in("--shard", impl.shard.substr(slash + 1), 1, 100000));
+      shard_i = static_cast<int>(integer_in("--shard", impl.shard.substr(0, slash), 1, shard_n));
+    }
+    if (sub_->get_option("--progress-every")->count() > 0 && !(impl.progress_every > 0))
+      throw InputError(fmt::format("--progress-every = {} is out of range; valid range: > 0", impl.progress_every));
+    points = build_sweep_points(def);
+    if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
+    if (rank0 && !impl.dry_run) ResultsStore::preflight(db_path);
+  } catch (const InputError& e) {
+    return fail(e.what(), kExitBadInput);
+  } catch (const StoreError& e) {
+    return world.broadcast(fail(e.what(), kExitBadInput));
+  }
+  if (world.broadcast(kExitOk) != kExitOk) return kExitBadInput;  // (only reached on ranks != 0)
+  if (threads == 0) threads = world.size() > 1 ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+
+  // Rank 0 finds what the store holds; the other ranks only compute what rank 0 hands them.
+  std::unique_ptr<ResultsStore> store;
+  std::vector<std::size_t> todo;
+  std::size_t already = 0;
+  int code = kExitOk;
+  if (rank0) {
+    try {
+      std::unordered_set<std::string> done;
+      if (impl.dry_run) {
+        if (access(db_path.c_str(), F_OK) == 0) {
+          ResultsStore::preflight(db_path);
+          done = ResultsStore(db_path).point_keys();
+        }
+      } else {
+        store = std::make_unique<ResultsStore>(db_path);
+        done = store->point_keys();
+      }
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (done.count(points[i].key)) ++already;
+        else todo.push_back(i);
+      }
+    } catch (const StoreError& e) {
+      code = fail(e.what(), kExitStoreFailed);
+    }
+  }
+  if (world.broadcast(code) != kExitOk) return kExitStoreFailed;
+
+  if (impl.dry_run) {
+    if (rank0) {
+      double cost = 0;
+      for (std::size_t i : todo) cost += points[i].cost;
+      fmt::print("# {} points{}, {} already in {}, {} to run, estimated {} of one core\n", points.size(),
+                 shard_n > 1 ? fmt::format(" (shard {}/{})", shard_i, shard_n) : "", already, db_path, todo.size(),
+                 format_duration(cost));
+      fmt::print("# order  est_cost_s  replica  seed  key\n");
+      std::vector<bool> to_run(points.size(), false);
+      for (std::size_t i : todo) to_run[i] = true;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        fmt::print("{:6d}  {:10.3g}  {:7d}  {}  {}{}\n", i + 1, points[i].cost, points[i].replica, points[i].spec.seed,
+                   points[i].key, to_run[i] ? "" : "  (stored)");
+    }
+    return kExitOk;
+  }
+
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  // On a terminal one line rewritten in place; otherwise (a batch job's log) a line every 10 s.
+  const bool show_progress = rank0 && (impl.progress_lines || !impl.quiet);
+  const double every = impl.progress_every > 0 ? impl.progress_every : (tty ? 0.5 : 10.0);
+  SweepProgressPrinter printer(tty);
+  std::vector<std::string> failures;
+  std::size_t inserted = 0;
+  PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+    if (!r) {
+      failures.push_back(fmt::format("{}: {}", p.key, error));
+      return;
+    }
+    if (store->insert_sweep_point(*r, p.key, def.base_seed, p.replica).inserted) ++inserted;
+  };
+  std::unique_ptr<SweepRunner> runner;
+  if (rank0) {
+    if (!impl.quiet || show_progress)
+      fmt::print(stderr, "sweep: {} points{}, {} already in {}, {} to run on {} thread{}{}\n", points.size(),
+                 shard_n > 1 ? fmt::format(" (shard {}/{})", shard_i, shard_n) : "", already, db_path, todo.size(), threads,
+                 threads == 1 ? "" : "s", world.size() > 1 ? fmt::format(" + {} MPI ranks", world.size() - 1) : "");
+    runner = std::make_unique<SweepRunner>(points, todo, sink);
+  }
+  try {
+    SweepProgressCallback cb;
+    if (show_progress) cb = [&printer](const SweepProgress& p) { printer(p); };
+    run_sweep_over_ranks(world, points, runner.get(), threads, cb, every);
+  } catch (const StoreError& e) {
+    code = fail(fmt::format("{}; the sweep stopped, every point stored so far is complete (repeat the command to resume)", e.what()),
+                kExitStoreFailed);
+  }
+  if (!rank0) return world.broadcast(code);
+
+  if (code == kExitOk) {
+    for (const auto& f : failures) fmt::print(stderr, "granchain: error: point turned unphysical, not stored: {}\n", f);
+    if (!failures.empty()) code = kExitUnphysical;
+    if (!impl.quiet) {
+      const auto summaries = store->point_summaries();
+      fmt::print("{:>6} {:>8} {:>10} {:>6} {:>8} {:>10} {:>4} {:>10} {:>9} {:>6}\n", "N", "e", "k", "T0", "T", "engine", "rep",
+                 "n_coll", "error", "run");
+      std::vector<const SweepPoint*> order;
+      for (const auto& p : points) order.push_back(&p);
+      std::sort(order.begin(), order.end(), [](const SweepPoint* a, const SweepPoint* b) {
+        const auto& x = a->spec;
+        const auto& y = b->spec;
+        return std::tie(x.engine.name, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, a->replica) <
+               std::tie(y.engine.name, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, b->replica);
+      });
+      for (const SweepPoint* p : order) {
+        const auto it = summaries.find(p->key);
+        if (it == summaries.end()) continue;  // failed
+        const RunSpec& s = p->spec;
+        fmt::print("{:>6} {:>8.6g} {:>10.3g} {:>6.4g} {:>8.6g} {:>10} {:>4} {:>10.5g} {:>9.2g} {:>6}\n", s.params.N, s.params.e,
+                   s.params.k, s.params.kT0, s.T, s.engine.name, p->replica, it->second.n_coll, it->second.n_coll_err,
+                   it->second.id);
+      }
+    }
+    if (!impl.quiet)
+      fmt::print(stderr, "sweep: {} points stored now, {} were already there, {} failed; store {}\n", inserted, already,
+                 failures.size(), db_path);
+  }
+  return world.broadcast(code);
+}
+
+}  // namespace
+
+}  // namespace granchain

@@ -1,0 +1,17 @@
+#pragma once
+// The identity of a driven-column run: every parameter that can change its result, numbers in
+// their shortest exact decimal form. Two runs with one key (seed included) give identical results,
+// whichever thread, rank or machine ran them; the results store and sweeps use it to find a point.
+#include <string>
+
+#include "simulation/driven_run.hpp"
+
+namespace granchain {
+
+// "driven_column engine=exact N=25 e=0.88 k=100000000 T0=1 ... seed=7". Engine options enter
+// only where they act: dt_factor for the time-stepped engines, tc for the hard engine.
+std::string point_key(const RunSpec& spec);
+// The same without the seed: what a sweep point's seed is derived from.
+std::string point_key_without_seed(const RunSpec& spec);
+
+}  // namespace granchain

@@ -1,0 +1,135 @@
+#include "store/store_export.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "store/sqlite_statement.hpp"
+
+namespace granchain {
+
+namespace {
+
+const char* source_sql(ExportTable t) {
+  switch (t) {
+    case ExportTable::Runs:
+      return "SELECT r.*, p.point_key, p.sweep_seed, p.replica FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
+    case ExportTable::Profiles:
+      return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
+             "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err "
+             "FROM profiles pr JOIN runs r ON r.id = pr.run_id";
+    case ExportTable::Collapse:
+      return "SELECT * FROM collapse_runs";
+    case ExportTable::Realizations:
+      return "SELECT cr.run_id, c.setup, c.engine, c.N, c.e, c.k, c.a, c.v0, c.dv0, c.stop_rule, c.seed, c.dt_factor, "
+             "c.tc, cr.realization, cr.particle_collisions, cr.wall_hits, cr.collapsed, cr.t_stop "
+             "FROM collapse_realizations cr JOIN collapse_runs c ON c.id = cr.run_id";
+  }
+  return "";
+}
+
+const char* order_sql(ExportTable t) {
+  switch (t) {
+    case ExportTable::Runs:
+    case ExportTable::Collapse: return " ORDER BY id";
+    case ExportTable::Profiles: return " ORDER BY run_id, i";
+    case ExportTable::Realizations: return " ORDER BY run_id, realization";
+  }
+  return "";
+}
+
+std::string csv_field(SqlStatement& row, int i) {
+  switch (row.column_type(i)) {
+    case SQLITE_NULL: return "";
+    case SQLITE_INTEGER: return std::to_string(row.column_int(i));
+    case SQLITE_FLOAT: return fmt::format("{}", row.column_double(i));  // shortest exact; inf as inf
+    default: {
+      const std::string t = row.column_text(i);
+      if (t.find_first_of(",\"\n\r") == std::string::npos) return t;
+      std::string q = "\"";
+      for (char c : t) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+      return q + "\"";
+    }
+  }
+}
+
+nlohmann::ordered_json json_field(SqlStatement& row, int i) {
+  switch (row.column_type(i)) {
+    case SQLITE_NULL: return nullptr;
+    case SQLITE_INTEGER: return row.column_int(i);
+    case SQLITE_FLOAT: {
+      const double x = row.column_double(i);
+      return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+    }
+    default: return row.column_text(i);
+  }
+}
+
+}  // namespace
+
+std::string export_results(const std::string& db_path, const ExportSelection& sel, ExportFormat format) {
+  if (access(db_path.c_str(), F_OK) != 0) throw StoreError(fmt::format("--db: '{}' does not exist", db_path));
+  ResultsStore::preflight(db_path);
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    throw StoreError(fmt::format("--db: cannot open '{}'", db_path));
+  }
+  std::unique_ptr<sqlite3, int (*)(sqlite3*)> guard(db, sqlite3_close);
+  sqlite3_busy_timeout(db, 60000);
+
+  std::string where;
+  std::vector<double> numbers;
+  for (const auto& [column, values] : sel.values) {
+    std::string any;
+    for (double v : values) {
+      any += fmt::format("{}abs({} - ?) <= 1e-12 * max(1.0, abs(?))", any.empty() ? "" : " OR ", column);
+      numbers.push_back(v);
+      numbers.push_back(v);
+    }
+    where += fmt::format(" AND ({})", any);
+  }
+  if (!sel.engines.empty()) {
+    std::string marks;
+    for (std::size_t i = 0; i < sel.engines.size(); ++i) marks += i ? ", ?" : "?";
+    where += " AND engine IN (" + marks + ")";
+  }
+  if (!sel.where.empty()) where += " AND (" + sel.where + ")";
+  const std::string sql = std::string("SELECT * FROM (") + source_sql(sel.table) + ") WHERE 1" + where + order_sql(sel.table);
+  sqlite3_stmt* probe = nullptr;
+  if (sqlite3_prepare_v2(db, sql.c_str(), -1, &probe, nullptr) != SQLITE_OK) {
+    const std::string msg = sqlite3_errmsg(db);
+    sqlite3_finalize(probe);
+    throw StoreError(fmt::format("the selection is not valid SQL on the exported columns ({}); check --where and the "
+                                 "filters against the columns of this table", msg));
+  }
+  sqlite3_finalize(probe);
+  SqlStatement rows(db, sql.c_str());
+  int b = 1;
+  for (double x : numbers) rows.bind(b++, x);
+  for (const auto& e : sel.engines) rows.bind(b++, e);
+
+  std::vector<int> shown;  // every column but the raw JSON provenance
+  for (int i = 0; i < rows.columns(); ++i)
+    if (std::string(rows.column_name(i)) != "result_json") shown.push_back(i);
+  std::string out;
+  if (format == ExportFormat::Csv) {
+    for (std::size_t j = 0; j < shown.size(); ++j) out += std::string(j ? "," : "") + rows.column_name(shown[j]);
+    out += "\n";
+    while (rows.row()) {
+      for (std::size_t j = 0; j < shown.size(); ++j) out += (j ? "," : "") + csv_field(rows, shown[j]);
+      out += "\n";
+    }
+    return out;
+  }
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  while (rows.row()) {
+    nlohmann::ordered_json obj;
+    for (int i : shown) obj[rows.column_name(i)] = json_field(rows, i);
+    all.push_back(std::move(obj));
+  }
+  return all.dump(1) + "\n";
+}
+
+}  // namespace granchain

@@ -1,0 +1,238 @@
+#include "store/store_merge.hpp"
+
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "store/sqlite_statement.hpp"
+
+namespace granchain {
+
+namespace {
+
+// The columns that carry a stored result: equal in two stores for one point unless something
+// changed the physics (wall time, date and code version may differ).
+const char* kRunResultColumns[] = {"n_coll", "n_coll_err", "n_coll_blocks", "floor_rate", "floor_rate_err", "pp_rate",
+                                   "pp_rate_err", "particle_collisions", "floor_hits", "samples", "events"};
+// What identifies a collapse count, and what it found.
+const char* kCollapseIdentity[] = {"setup", "engine", "N", "e", "k", "a", "v0", "dv0", "stop_rule", "realizations",
+                                   "seed", "dt_factor", "tc"};
+const char* kCollapseResultColumns[] = {"n_tot", "n_tot_err", "n_tot_min", "n_tot_max", "collapsed"};
+
+struct Connection {
+  sqlite3* db = nullptr;
+  ~Connection() { sqlite3_close(db); }
+};
+
+void exec(sqlite3* db, const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw StoreError("merge: " + msg);
+  }
+}
+
+int column_index(SqlStatement& st, const std::string& name) {
+  for (int i = 0; i < st.columns(); ++i)
+    if (name == st.column_name(i)) return i;
+  throw StoreError("merge: a source store lacks the column '" + name + "'");
+}
+
+// "INSERT INTO table(c1, c2, ...) VALUES(?, ...)" for the first `count` columns of a row,
+// leaving out `skip` (the row id, which the target assigns).
+std::string insert_sql(const std::string& table, SqlStatement& row, int count, const std::string& skip) {
+  std::string names, marks;
+  for (int i = 0; i < count; ++i) {
+    if (skip == row.column_name(i)) continue;
+    names += std::string(names.empty() ? "" : ", ") + row.column_name(i);
+    marks += marks.empty() ? "?" : ", ?";
+  }
+  return "INSERT INTO " + table + "(" + names + ") VALUES(" + marks + ")";
+}
+
+void bind_row(SqlStatement& insert, SqlStatement& row, int count, const std::string& skip, int replace_column = -1,
+              std::int64_t replacement = 0) {
+  int b = 1;
+  for (int i = 0; i < count; ++i) {
+    if (skip == row.column_name(i)) continue;
+    if (i == replace_column) insert.bind(b++, replacement);
+    else insert.bind_value(b++, row.column_value(i));
+  }
+}
+
+std::string describe(SqlStatement& row, int i) {
+  switch (row.column_type(i)) {
+    case SQLITE_NULL: return "NULL";
+    case SQLITE_INTEGER: return std::to_string(row.column_int(i));
+    case SQLITE_FLOAT: return fmt::format("{}", row.column_double(i));
+    default: return row.column_text(i);
+  }
+}
+
+// Copies the child rows (profiles, realisations) of one parent.
+void copy_children(sqlite3* from, sqlite3* to, const std::string& table, const std::string& parent_column,
+                   std::int64_t old_id, std::int64_t new_id) {
+  SqlStatement rows(from, ("SELECT * FROM " + table + " WHERE " + parent_column + " = ?").c_str());
+  rows.bind(1, old_id);
+  std::unique_ptr<SqlStatement> insert;
+  int parent = -1;
+  while (rows.row()) {
+    if (!insert) {
+      insert = std::make_unique<SqlStatement>(to, insert_sql(table, rows, rows.columns(), "").c_str());
+      parent = column_index(rows, parent_column);
+    }
+    bind_row(*insert, rows, rows.columns(), "", parent, new_id);
+    insert->run();
+  }
+}
+
+bool has_table(sqlite3* db, const char* name) {
+  SqlStatement st(db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
+  st.bind(1, std::string(name));
+  st.row();
+  return st.column_int(0) > 0;
+}
+
+// The first of `columns` whose value differs between the target's row `id` and the source row,
+// as "name: target vs source"; "" when all are equal (NULL equals NULL).
+template <std::size_t n>
+std::string first_difference(sqlite3* target, const char* table, std::int64_t id, SqlStatement& row, const char* (&columns)[n]) {
+  for (const char* c : columns) {
+    SqlStatement same(target, fmt::format("SELECT {0} IS ?, {0} FROM {1} WHERE id = ?", c, table).c_str());
+    const int i = column_index(row, c);
+    same.bind_value(1, row.column_value(i));
+    same.bind(2, id);
+    same.row();
+    if (same.column_int(0) == 0) return fmt::format("{}: {} vs {}", c, describe(same, 1), describe(row, i));
+  }
+  return "";
+}
+
+void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
+                MergeReport& report) {
+  const bool keyed = has_table(source, "run_points");
+  SqlStatement rows(source, keyed ? "SELECT r.*, p.point_key, p.sweep_seed, p.replica FROM runs r "
+                                    "LEFT JOIN run_points p ON p.run_id = r.id ORDER BY r.id"
+                                  : "SELECT r.*, NULL, NULL, NULL FROM runs r ORDER BY r.id");
+  const int run_columns = rows.columns() - 3;
+  SqlStatement find(target, "SELECT run_id FROM run_points WHERE point_key = ?");
+  SqlStatement add_key(target, "INSERT INTO run_points(point_key, run_id, sweep_seed, replica) VALUES(?,?,?,?)");
+  std::unique_ptr<SqlStatement> insert;
+  while (rows.row()) {
+    const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
+    const bool has_key = rows.column_type(run_columns) != SQLITE_NULL;
+    if (has_key) {
+      const std::string key = rows.column_text(run_columns);
+      find.bind(1, key);
+      const bool found = find.row();
+      const std::int64_t existing = found ? find.column_int(0) : 0;
+      find.reset();
+      if (found) {
+        const std::string diff = first_difference(target, "runs", existing, rows, kRunResultColumns);
+        if (!diff.empty())
+          throw MergeConflict(fmt::format("merge: conflicting results for point '{}': run {} of '{}' and run {} of '{}' "
+                                          "differ ({}); nothing was merged",
+                                          key, existing, target_path, old_id, source_path, diff));
+        ++report.runs_already_there;
+        continue;
+      }
+    }
+    if (!insert) insert = std::make_unique<SqlStatement>(target, insert_sql("runs", rows, run_columns, "id").c_str());
+    bind_row(*insert, rows, run_columns, "id");
+    insert->run();
+    const std::int64_t new_id = sqlite3_last_insert_rowid(target);
+    copy_children(source, target, "profiles", "run_id", old_id, new_id);
+    if (has_key) {
+      add_key.bind_value(1, rows.column_value(run_columns));
+      add_key.bind(2, new_id);
+      add_key.bind_value(3, rows.column_value(run_columns + 1));
+      add_key.bind_value(4, rows.column_value(run_columns + 2));
+      add_key.run();
+    }
+    ++report.runs_added;
+  }
+}
+
+void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
+                    MergeReport& report) {
+  SqlStatement rows(source, "SELECT * FROM collapse_runs ORDER BY id");
+  std::string where;
+  for (const char* c : kCollapseIdentity) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
+  SqlStatement find(target, ("SELECT id FROM collapse_runs WHERE " + where).c_str());
+  std::unique_ptr<SqlStatement> insert;
+  while (rows.row()) {
+    const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
+    int b = 1;
+    for (const char* c : kCollapseIdentity) find.bind_value(b++, rows.column_value(column_index(rows, c)));
+    const bool found = find.row();
+    const std::int64_t existing = found ? find.column_int(0) : 0;
+    find.reset();
+    if (found) {
+      const std::string diff = first_difference(target, "collapse_runs", existing, rows, kCollapseResultColumns);
+      if (!diff.empty())
+        throw MergeConflict(fmt::format("merge: conflicting collapse counts: collapse run {} of '{}' and {} of '{}' have the "
+                                        "same parameters and seed but differ ({}); nothing was merged",
+                                        existing, target_path, old_id, source_path, diff));
+      ++report.collapse_already_there;
+      continue;
+    }
+    if (!insert) insert = std::make_unique<SqlStatement>(target, insert_sql("collapse_runs", rows, rows.columns(), "id").c_str());
+    bind_row(*insert, rows, rows.columns(), "id");
+    insert->run();
+    copy_children(source, target, "collapse_realizations", "run_id", old_id, sqlite3_last_insert_rowid(target));
+    ++report.collapse_added;
+  }
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat sa {}, sb {};
+  return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+MergeReport merge_into(const std::string& target, const std::vector<std::string>& sources) {
+  ResultsStore out(target);
+  sqlite3* db = out.handle();
+  MergeReport report;
+  exec(db, "BEGIN IMMEDIATE");
+  try {
+    for (const auto& path : sources) {
+      Connection src;
+      if (sqlite3_open_v2(path.c_str(), &src.db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK)
+        throw StoreError(fmt::format("merge: cannot open '{}'", path));
+      sqlite3_busy_timeout(src.db, 60000);
+      exec(src.db, "BEGIN");  // one consistent snapshot of the source
+      merge_runs(db, src.db, path, target, report);
+      merge_collapse(db, src.db, path, target, report);
+      exec(src.db, "COMMIT");
+    }
+    exec(db, "COMMIT");
+  } catch (...) {
+    sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  return report;
+}
+
+}  // namespace
+
+MergeReport merge_stores(const std::string& target, const std::vector<std::string>& sources) {
+  for (const auto& s : sources) {
+    struct stat st {};
+    if (stat(s.c_str(), &st) != 0) throw StoreError(fmt::format("merge: source '{}' does not exist", s));
+    if (same_file(s, target)) throw StoreError(fmt::format("merge: source '{}' is the target itself", s));
+    ResultsStore::preflight(s);
+  }
+  ResultsStore::preflight(target);
+  struct stat st {};
+  const bool existed = stat(target.c_str(), &st) == 0;
+  try {
+    return merge_into(target, sources);
+  } catch (...) {
+    if (!existed) std::remove(target.c_str());  // a failed merge leaves no new file behind
+    throw;
+  }
+}
+
+}  // namespace granchain

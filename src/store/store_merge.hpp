@@ -1,0 +1,32 @@
+#pragma once
+// Joining results stores (job-array shards, runs made on several machines) into one.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "store/results_store.hpp"
+
+namespace granchain {
+
+// Two stores hold one point (the same key, or for collapse counts the same parameters and seed)
+// with different results: the code or the machine changed something it should not have.
+class MergeConflict : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
+struct MergeReport {
+  std::int64_t runs_added = 0;
+  std::int64_t runs_already_there = 0;      // identical point already in the target
+  std::int64_t collapse_added = 0;
+  std::int64_t collapse_already_there = 0;
+};
+
+// Copies every run (with its profiles and key) and every collapse count (with its realisations)
+// of the sources into target, which is created if missing. A point present in both with the same
+// results is kept once; with different results the merge throws MergeConflict naming both and
+// the differing numbers. All sources go in one transaction: on any error nothing is written.
+// Sources are only read.
+MergeReport merge_stores(const std::string& target, const std::vector<std::string>& sources);
+
+}  // namespace granchain

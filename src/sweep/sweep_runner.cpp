@@ -1,0 +1,114 @@
+#include "sweep/sweep_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <thread>
+
+
+namespace granchain {
+
+double wall_clock_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink)
+    : points_(points), todo_(std::move(todo)), sink_(std::move(sink)) {
+  for (std::size_t i : todo_) total_cost_ += points_.at(i).cost;
+  start_ = wall_clock_seconds();
+}
+
+std::optional<std::size_t> SweepRunner::next() {
+  std::lock_guard lock(mutex_);
+  if (stop_ || handed_out_ == todo_.size()) return std::nullopt;
+  return todo_[handed_out_++];
+}
+
+void SweepRunner::record(std::size_t index, const RunResult* result, const std::string& error) {
+  std::lock_guard lock(mutex_);
+  ++done_;
+  if (!result) ++failed_;
+  done_cost_ += points_[index].cost;
+  if (result) finished_events_ += result->events;
+  if (sink_error_) return;  // the store already failed: nothing more is written
+  try {
+    sink_(points_[index], result, error);
+  } catch (...) {
+    sink_error_ = std::current_exception();
+    stop_ = true;
+  }
+}
+
+SweepProgress SweepRunner::progress() const {
+  std::lock_guard lock(mutex_);
+  SweepProgress p;
+  p.done = done_;
+  p.failed = failed_;
+  p.total = todo_.size();
+  p.elapsed = wall_clock_seconds() - start_;
+  p.eta = done_cost_ > 0 ? p.elapsed * (total_cost_ - done_cost_) / done_cost_
+                         : std::numeric_limits<double>::quiet_NaN();
+  std::uint64_t events = finished_events_;
+  for (int t = 0; t < threads_; ++t) events += live_events_[t].load();
+  p.collisions_per_second = p.elapsed > 0 ? static_cast<double>(events) / p.elapsed : 0.0;
+  return p;
+}
+
+void SweepRunner::worker(int slot) {
+  while (const auto index = next()) {
+    const SweepPoint& point = points_[*index];
+    live_events_[slot] = 0;
+    ProgressCallback live = [this, slot](const RunProgress& rp) { live_events_[slot] = rp.events; };
+    try {
+      const RunResult result = run_driven_column(point.spec, live, 0.5);
+      live_events_[slot] = 0;
+      record(*index, &result, "");
+    } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point
+      live_events_[slot] = 0;
+      record(*index, nullptr, e.what());
+    }
+  }
+}
+
+void SweepRunner::run(int threads, const SweepProgressCallback& progress_cb, double progress_every,
+                      const std::function<void()>& also_run_on_this_thread) {
+  threads_ = threads;
+  live_events_ = std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(threads));
+  start_ = wall_clock_seconds();
+
+  std::mutex wait_mutex;
+  std::condition_variable wake;
+  bool finished = false;
+  std::thread reporter;
+  if (progress_cb) {
+    reporter = std::thread([&] {
+      std::unique_lock lock(wait_mutex);
+      while (!wake.wait_for(lock, std::chrono::duration<double>(progress_every), [&] { return finished; })) {
+        lock.unlock();
+        progress_cb(progress());
+        lock.lock();
+      }
+    });
+  }
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) pool.emplace_back([this, t] { worker(t); });
+  if (also_run_on_this_thread) also_run_on_this_thread();
+  for (auto& t : pool) t.join();
+  if (reporter.joinable()) {
+    {
+      std::lock_guard lock(wait_mutex);
+      finished = true;
+    }
+    wake.notify_all();
+    reporter.join();
+  }
+  if (progress_cb) {
+    SweepProgress p = progress();
+    p.final = true;
+    progress_cb(p);
+  }
+  if (sink_error_) std::rethrow_exception(sink_error_);
+}
+
+}  // namespace granchain

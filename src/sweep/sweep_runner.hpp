@@ -1,0 +1,79 @@
+#pragma once
+// Runs the points of a sweep on a pool of threads (and, through mpi_sweep.hpp, on MPI ranks):
+// points are handed out longest first from one queue, each finished point goes to a sink (the
+// results store) one at a time, and progress is reported periodically. A point whose dynamics
+// turns unphysical is reported to the sink with its error and the sweep goes on.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sweep/sweep_grid.hpp"
+
+namespace granchain {
+
+struct SweepProgress {
+  std::size_t done = 0;       // points finished in this invocation (failed ones included)
+  std::size_t failed = 0;
+  std::size_t total = 0;      // points to run in this invocation
+  double elapsed = 0.0;       // wall seconds
+  double eta = 0.0;           // wall seconds left, from the estimated costs; NaN before the first point
+  double collisions_per_second = 0.0;  // collision events of all workers (running points included)
+  bool final = false;         // the last report
+};
+
+// Called for every finished point, never concurrently: result is null when the point failed,
+// with the reason in error. May throw (a store that cannot be written): the sweep then stops
+// handing out points and run() rethrows once the running points are done.
+using PointSink = std::function<void(const SweepPoint& point, const RunResult* result, const std::string& error)>;
+using SweepProgressCallback = std::function<void(const SweepProgress&)>;
+
+class SweepRunner {
+ public:
+  // todo: indices into points, in the order to hand them out.
+  SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink);
+
+  // Runs every point of todo on `threads` local threads (and whatever else calls next() and
+  // record()), reporting progress every `progress_every` seconds and once at the end.
+  void run(int threads, const SweepProgressCallback& progress = {}, double progress_every = 1.0,
+           const std::function<void()>& also_run_on_this_thread = {});
+
+  // The queue, for other workers (MPI ranks): the next point to run, or nothing when all are out.
+  std::optional<std::size_t> next();
+  // A point finished elsewhere: passes it to the sink and counts it.
+  void record(std::size_t index, const RunResult* result, const std::string& error);
+
+  SweepProgress progress() const;
+  std::size_t total() const { return todo_.size(); }
+  bool stopped() const { return stop_; }
+
+ private:
+  void worker(int slot);
+
+  const std::vector<SweepPoint>& points_;
+  std::vector<std::size_t> todo_;
+  PointSink sink_;
+  double total_cost_ = 0.0;
+
+  mutable std::mutex mutex_;  // guards the fields below and calls of the sink
+  std::size_t handed_out_ = 0;
+  std::size_t done_ = 0;
+  std::size_t failed_ = 0;
+  double done_cost_ = 0.0;
+  std::uint64_t finished_events_ = 0;
+  std::exception_ptr sink_error_;
+  std::atomic<bool> stop_{false};
+
+  std::unique_ptr<std::atomic<std::uint64_t>[]> live_events_;  // per local thread, of its running point
+  int threads_ = 0;
+  double start_ = 0.0;
+};
+
+// Wall-clock seconds since an arbitrary fixed moment (steady clock).
+double wall_clock_seconds();
+
+}  // namespace granchain

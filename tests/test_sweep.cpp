@@ -1,0 +1,259 @@
+// Sweeps: the grid, seeds that depend only on the point, shards, the thread pool, the store's
+// point keys, merging stores and exporting them.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <set>
+
+#include "cli/input_error.hpp"
+#include "simulation/run_key.hpp"
+#include "store/results_store.hpp"
+#include "store/run_json.hpp"
+#include "store/store_export.hpp"
+#include "store/store_merge.hpp"
+#include "sweep/sweep_grid.hpp"
+#include "sweep/sweep_runner.hpp"
+#include "temp_dir.hpp"
+
+using namespace granchain;
+namespace fs = std::filesystem;
+
+namespace {
+
+SweepDefinition definition(std::map<std::string, std::string> values, int replicas = 1, std::uint64_t seed = 1) {
+  SweepDefinition d;
+  for (auto& [k, v] : values) d.raw[k] = RawValue{v, ""};
+  d.replicas = replicas;
+  d.base_seed = seed;
+  return d;
+}
+
+// A small grid that runs in well under a second.
+SweepDefinition small_grid() { return definition({{"N", "3,4"}, {"e", "0.6,0.9"}, {"k", "1e4"}, {"T", "20"}}, 2); }
+
+std::map<std::string, RunResult> run_points(const std::vector<SweepPoint>& points, int threads) {
+  std::vector<std::size_t> todo(points.size());
+  for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
+  std::map<std::string, RunResult> out;
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+    ASSERT_NE(r, nullptr) << error;
+    out[p.key] = *r;
+  });
+  runner.run(threads);
+  return out;
+}
+
+void expect_same_physics(const RunResult& a, const RunResult& b) {
+  EXPECT_EQ(a.n_coll.value, b.n_coll.value);
+  EXPECT_EQ(a.n_coll.error, b.n_coll.error);
+  EXPECT_EQ(a.particle_collisions, b.particle_collisions);
+  EXPECT_EQ(a.floor_hits, b.floor_hits);
+  EXPECT_EQ(a.events, b.events);
+  ASSERT_EQ(a.profiles.size(), b.profiles.size());
+  for (std::size_t i = 0; i < a.profiles.size(); ++i) {
+    EXPECT_EQ(a.profiles[i].z_mean.value, b.profiles[i].z_mean.value);
+    EXPECT_EQ(a.profiles[i].kinetic.error, b.profiles[i].kinetic.error);
+  }
+}
+
+std::int64_t count(const std::string& db_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  sqlite3_stmt* st = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  std::int64_t n = -1;
+  if (sqlite3_step(st) == SQLITE_ROW) n = sqlite3_column_int64(st, 0);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return n;
+}
+
+}  // namespace
+
+TEST(SweepGrid, ExpandsListsRangesAndReplicasLongestFirst) {
+  const auto points = build_sweep_points(
+      definition({{"N", "3,5"}, {"e", "0.80:0.90:0.05"}, {"k", "1e4:1e6:x10"}, {"T", "10"}}, 2));
+  EXPECT_EQ(points.size(), 2u * 3u * 3u * 2u);
+  std::set<std::string> keys;
+  std::set<double> es;
+  for (const auto& p : points) {
+    keys.insert(p.key);
+    es.insert(p.spec.params.e);
+    EXPECT_EQ(p.spec.transient, 1.0);  // the run's default T / 10
+  }
+  EXPECT_EQ(keys.size(), points.size());
+  EXPECT_EQ(es, (std::set<double>{0.8, 0.85, 0.9}));  // tidied: exactly the doubles of "0.85" etc.
+  for (std::size_t i = 1; i < points.size(); ++i) EXPECT_GE(points[i - 1].cost, points[i].cost);
+  EXPECT_EQ(points.front().spec.params.N, 5);  // more particles cost more
+}
+
+TEST(SweepGrid, HardEngineTakesNoKAndRepeatedValuesAreOnePoint) {
+  const auto points = build_sweep_points(
+      definition({{"N", "4,4"}, {"e", "0.9"}, {"k", "1e4,1e5"}, {"engine", "exact,hard"}, {"T", "10"}}));
+  ASSERT_EQ(points.size(), 3u);  // exact at two k, hard once
+  int hard = 0;
+  for (const auto& p : points)
+    if (p.spec.engine.name == "hard") {
+      ++hard;
+      EXPECT_TRUE(std::isinf(p.spec.params.k));
+    }
+  EXPECT_EQ(hard, 1);
+  EXPECT_THROW(build_sweep_points(definition({{"tc", "0.1"}})), InputError);  // TC needs the hard engine
+  EXPECT_THROW(build_sweep_points(definition({{"e", "0.5,1.5"}})), InputError);
+  EXPECT_THROW(build_sweep_points(definition({{"N", "3:1:1"}})), InputError);
+}
+
+TEST(SweepGrid, SeedDependsOnlyOnBaseSeedParametersAndReplica) {
+  const auto small = build_sweep_points(definition({{"N", "4"}, {"e", "0.9"}, {"T", "10"}}, 2, 7));
+  const auto large = build_sweep_points(definition({{"N", "3,4,5"}, {"e", "0.5,0.9"}, {"T", "10"}}, 3, 7));
+  for (const auto& p : small) {
+    const auto same = std::find_if(large.begin(), large.end(), [&](const SweepPoint& q) { return q.key == p.key; });
+    ASSERT_NE(same, large.end()) << "a point's key and seed must not depend on the rest of the grid";
+    EXPECT_EQ(same->replica, p.replica);
+  }
+  EXPECT_NE(small[0].spec.seed, small[1].spec.seed);  // replicas differ
+  const auto other_base = build_sweep_points(definition({{"N", "4"}, {"e", "0.9"}, {"T", "10"}}, 2, 8));
+  EXPECT_NE(other_base[0].spec.seed, small[0].spec.seed);
+  for (const auto& p : large) EXPECT_LT(p.spec.seed, 1ULL << 63);
+}
+
+TEST(SweepGrid, ShardsPartitionTheGrid) {
+  const auto points = build_sweep_points(definition({{"N", "3:9:1"}, {"e", "0.5,0.7,0.9"}, {"T", "10"}}));
+  std::multiset<std::string> joined;
+  for (int i = 1; i <= 4; ++i)
+    for (const auto& p : shard_points(points, i, 4)) joined.insert(p.key);
+  EXPECT_EQ(joined.size(), points.size());
+  for (const auto& p : points) EXPECT_EQ(joined.count(p.key), 1u);
+  EXPECT_EQ(shard_points(points, 1, 1).size(), points.size());
+}
+
+TEST(SweepRunner, ResultsDoNotDependOnThreadCount) {
+  const auto points = build_sweep_points(small_grid());
+  const auto one = run_points(points, 1);
+  const auto two = run_points(points, 2);
+  ASSERT_EQ(one.size(), points.size());
+  ASSERT_EQ(two.size(), points.size());
+  for (const auto& [key, r] : one) expect_same_physics(r, two.at(key));
+  // And a point run on its own, as `granchain run --seed` would, gives the same again.
+  const RunResult alone = run_driven_column(points.back().spec);
+  expect_same_physics(alone, one.at(points.back().key));
+  EXPECT_EQ(point_key(alone.spec), points.back().key);
+}
+
+TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
+  // Hard spheres at e = 0.5, N = 25 collapse inelastically within T = 100 (docs/engines.md).
+  const auto points = build_sweep_points(
+      definition({{"N", "25,3"}, {"e", "0.5"}, {"engine", "hard"}, {"T", "100"}}));
+  ASSERT_EQ(points.size(), 2u);
+  std::vector<std::size_t> todo = {0, 1};
+  int ok = 0, failed = 0;
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+    if (r) {
+      ++ok;
+      EXPECT_EQ(p.spec.params.N, 3);
+    } else {
+      ++failed;
+      EXPECT_EQ(p.spec.params.N, 25);
+      EXPECT_NE(error.find("inelastic collapse"), std::string::npos) << error;
+    }
+  });
+  std::vector<SweepProgress> reports;
+  runner.run(2, [&](const SweepProgress& p) { reports.push_back(p); }, 10.0);
+  EXPECT_EQ(ok, 1);
+  EXPECT_EQ(failed, 1);
+  ASSERT_FALSE(reports.empty());
+  EXPECT_TRUE(reports.back().final);
+  EXPECT_EQ(reports.back().done, 2u);
+  EXPECT_EQ(reports.back().failed, 1u);
+}
+
+TEST(RunJson, RoundTripIsExact) {
+  const auto points = build_sweep_points(small_grid());
+  const RunResult r = run_driven_column(points.front().spec);
+  const RunResult back = run_result_from_json(nlohmann::json::parse(run_result_to_json(r).dump()));
+  expect_same_physics(r, back);
+  EXPECT_EQ(point_key(back.spec), point_key(r.spec));
+  EXPECT_EQ(back.law.tau_c, r.law.tau_c);
+  EXPECT_EQ(back.floor_rate.error, r.floor_rate.error);
+  EXPECT_EQ(back.profiles.back().z_std.error, r.profiles.back().z_std.error);
+}
+
+TEST(SweepStore, PointsAreStoredOnceMergedOnceAndConflictsRefused) {
+  TempDir dir;
+  const auto points = build_sweep_points(small_grid());
+  const auto results = run_points(points, 2);
+  const std::string a = dir.file("a.db"), b = dir.file("b.db"), all = dir.file("all.db");
+  {
+    ResultsStore sa(a), sb(b);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const RunResult& r = results.at(points[i].key);
+      EXPECT_TRUE(sa.insert_sweep_point(r, points[i].key, 1, points[i].replica).inserted);
+      EXPECT_FALSE(sa.insert_sweep_point(r, points[i].key, 1, points[i].replica).inserted);  // never twice
+      if (i % 2 == 0) sb.insert_sweep_point(r, points[i].key, 1, points[i].replica);         // b: half, overlapping
+    }
+    EXPECT_EQ(sa.point_keys().size(), points.size());
+  }
+  EXPECT_EQ(count(a, "SELECT count(*) FROM runs"), static_cast<std::int64_t>(points.size()));
+
+  MergeReport m = merge_stores(all, {a, b});
+  EXPECT_EQ(m.runs_added, static_cast<std::int64_t>(points.size()));
+  EXPECT_EQ(m.runs_already_there, static_cast<std::int64_t>((points.size() + 1) / 2));
+  m = merge_stores(all, {b});  // again: nothing new
+  EXPECT_EQ(m.runs_added, 0);
+  EXPECT_EQ(count(all, "SELECT count(*) FROM runs"), static_cast<std::int64_t>(points.size()));
+  EXPECT_EQ(count(all, "SELECT count(*) FROM profiles"), count(a, "SELECT count(*) FROM profiles"));
+  EXPECT_EQ(count(all, "SELECT count(DISTINCT point_key) FROM run_points"), static_cast<std::int64_t>(points.size()));
+
+  // A store whose copy of one point differs in one collision count: the merge refuses it whole.
+  fs::copy_file(b, dir.file("c.db"));
+  sqlite3* db = nullptr;
+  sqlite3_open(dir.file("c.db").c_str(), &db);
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE runs SET particle_collisions = particle_collisions + 1 WHERE id = 1", nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const std::string fresh = dir.file("fresh.db");
+  try {
+    merge_stores(fresh, {a, dir.file("c.db")});
+    FAIL() << "a conflicting duplicate was merged";
+  } catch (const MergeConflict& e) {
+    EXPECT_NE(std::string(e.what()).find("particle_collisions"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(fresh)) << "a failed merge must leave no new file";
+  EXPECT_THROW(merge_stores(all, {dir.file("c.db")}), MergeConflict);
+  EXPECT_EQ(count(all, "SELECT count(*) FROM runs"), static_cast<std::int64_t>(points.size()));
+}
+
+TEST(SweepStore, ExportSelectsByValueEngineAndCondition) {
+  TempDir dir;
+  const auto points = build_sweep_points(small_grid());
+  const std::string path = dir.file("s.db");
+  {
+    ResultsStore s(path);
+    for (const auto& [key, r] : run_points(points, 2)) {
+      const auto p = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) { return q.key == key; });
+      s.insert_sweep_point(r, key, 1, p->replica);
+    }
+  }
+  auto lines = [](const std::string& text) { return std::count(text.begin(), text.end(), '\n'); };
+  ExportSelection sel;
+  EXPECT_EQ(lines(export_results(path, sel, ExportFormat::Csv)), 1 + 8);
+  sel.values["N"] = {3};
+  sel.values["e"] = {0.9};
+  EXPECT_EQ(lines(export_results(path, sel, ExportFormat::Csv)), 1 + 2);
+  const auto j = nlohmann::json::parse(export_results(path, sel, ExportFormat::Json));
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(j[0]["N"], 3);
+  EXPECT_TRUE(j[0].contains("point_key") && j[0].contains("replica") && j[0].contains("n_coll_err"));
+  sel.table = ExportTable::Profiles;
+  EXPECT_EQ(lines(export_results(path, sel, ExportFormat::Csv)), 1 + 2 * 3);  // 2 runs of 3 particles
+  sel.values.clear();
+  sel.table = ExportTable::Runs;
+  sel.where = "replica = 1 AND N = 4";
+  EXPECT_EQ(lines(export_results(path, sel, ExportFormat::Csv)), 1 + 2);
+  sel.engines = {"reference"};
+  EXPECT_EQ(lines(export_results(path, sel, ExportFormat::Csv)), 1);
+  sel.where = "no_such_column > 1";
+  EXPECT_THROW(export_results(path, sel, ExportFormat::Csv), StoreError);
+}

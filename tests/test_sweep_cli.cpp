@@ -1,0 +1,214 @@
+// `granchain sweep`, `merge` and `export` as a user meets them: a 200-point sweep killed with
+// kill -9 and resumed, identical numbers on 1 thread, 2 threads and 2 MPI ranks, job-array shards
+// merged back, CSV export, and bad input.
+#include <signal.h>
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <thread>
+#include <vector>
+
+#include "cli_fixture.hpp"
+
+namespace {
+
+// Physics columns of every stored run, by point key, from `granchain export` CSV.
+std::map<std::string, std::string> physics_by_key(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  {
+    std::istringstream h(line);
+    for (std::string c; std::getline(h, c, ',');) header.push_back(c);
+  }
+  const std::vector<std::string> wanted = {"seed",      "n_coll",  "n_coll_err",          "n_coll_blocks", "floor_rate",
+                                           "pp_rate",   "samples", "particle_collisions", "floor_hits",    "events"};
+  std::map<std::string, std::string> out;
+  while (std::getline(in, line)) {
+    std::istringstream r(line);
+    std::map<std::string, std::string> row;
+    std::size_t i = 0;
+    for (std::string c; std::getline(r, c, ',');) row[header.at(i++)] = c;
+    std::string physics;
+    for (const auto& w : wanted) physics += w + "=" + row.at(w) + " ";
+    EXPECT_TRUE(out.emplace(row.at("point_key"), physics).second) << "point stored twice: " << row.at("point_key");
+  }
+  return out;
+}
+
+// Profile rows of `granchain export --table profiles` without their store-specific run id, sorted.
+std::vector<std::string> profile_rows(const std::string& csv) {
+  std::istringstream in(csv);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(in, line);) rows.push_back(line.substr(line.find(',') + 1));
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+std::int64_t query(const fs::path& db_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  std::int64_t n = 0;
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 5000);
+    sqlite3_stmt* st = nullptr;
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
+      n = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return n;
+}
+
+class SweepCli : public Cli {
+ protected:
+  // Starts granchain in the test folder without waiting; returns its process id.
+  pid_t start(const std::string& args) {
+    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' " + args + " > bg.txt 2>&1";
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    return pid;
+  }
+  std::string export_csv(const std::string& db, const std::string& table = "runs") {
+    const CliResult r = run("export --db " + db + " --table " + table);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  }
+};
+
+// 8 values of N x 5 of e x 5 replicas = 200 points, about 2 s of one core.
+const std::string kGrid = "sweep --N 3:10:1 --e 0.5,0.7,0.8,0.9,0.95 --k 1e5 --T 300 --replicas 5 --seed 11 -q";
+
+}  // namespace
+
+TEST_F(SweepCli, TwoHundredPointsSurviveKillNineAndAgreeOnThreadsAndRanks) {
+  const CliResult one = run(kGrid + " --threads 1 --db one.db");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(query(dir_ / "one.db", "SELECT count(*) FROM runs"), 200);
+
+  // Killed with SIGKILL part-way through, on 2 threads.
+  const pid_t pid = start(kGrid + " --threads 2 --db killed.db");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::int64_t at_kill = 0;
+  while ((at_kill = query(dir_ / "killed.db", "SELECT count(*) FROM runs")) < 30 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep ended before it could be killed";
+  const std::int64_t after_kill = query(dir_ / "killed.db", "SELECT count(*) FROM runs");
+  ASSERT_GE(after_kill, 30);
+  ASSERT_LT(after_kill, 200) << "the sweep finished before the kill; the test shows nothing";
+  // Every stored run is whole: its key and all its particles' profiles are there.
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(*) FROM run_points"), after_kill);
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(*) FROM profiles"), query(dir_ / "killed.db", "SELECT sum(N) FROM runs"));
+
+  // The same command again finishes the sweep, reporting progress as plain lines (not a terminal).
+  const CliResult resumed = run(kGrid + " --threads 2 --db killed.db --progress --progress-every 0.2");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find(std::to_string(after_kill) + " already in killed.db"), std::string::npos) << resumed.err;
+  EXPECT_NE(resumed.err.find("sweep: " + std::to_string(200 - after_kill) + "/" + std::to_string(200 - after_kill) + " points"),
+            std::string::npos)
+      << resumed.err;
+  EXPECT_NE(resumed.err.find("ETA"), std::string::npos);
+  EXPECT_NE(resumed.err.find("collisions/s"), std::string::npos);
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(*) FROM runs"), 200);
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(DISTINCT point_key) FROM run_points"), 200);
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(*) FROM profiles"), query(dir_ / "one.db", "SELECT count(*) FROM profiles"));
+  // A third time there is nothing left to do.
+  ASSERT_EQ(run(kGrid + " --threads 2 --db killed.db").exit_code, 0);
+  EXPECT_EQ(query(dir_ / "killed.db", "SELECT count(*) FROM runs"), 200);
+
+  const auto reference = physics_by_key(export_csv("one.db"));
+  ASSERT_EQ(reference.size(), 200u);
+  EXPECT_EQ(physics_by_key(export_csv("killed.db")), reference);
+
+#if defined(GRANCHAIN_WITH_MPI) && defined(GRANCHAIN_MPIEXEC)
+  // Two MPI ranks (root needs OpenMPI's explicit consent; one core may host both ranks).
+  const std::string mpi = std::string("env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 '") + GRANCHAIN_MPIEXEC +
+                          "' --oversubscribe -np 2 '" + GRANCHAIN_BINARY + "' " + kGrid + " --db mpi.db";
+  const int rc = std::system(("cd '" + dir_.string() + "' && " + mpi + " > mpi.txt 2>&1").c_str());
+  ASSERT_EQ(rc, 0) << slurp(dir_ / "mpi.txt");
+  EXPECT_EQ(physics_by_key(export_csv("mpi.db")), reference);
+  // Profiles too, particle by particle.
+  const auto profiles = profile_rows(export_csv("one.db", "profiles"));
+  EXPECT_EQ(profiles.size(), 1u + 5u * 5u * 52u);  // header, then 5 e x 5 replicas x (3 + 4 + ... + 10) particles
+  EXPECT_EQ(profile_rows(export_csv("mpi.db", "profiles")), profiles);
+  EXPECT_EQ(profile_rows(export_csv("killed.db", "profiles")), profiles);
+#else
+  GTEST_SKIP() << "built without MPI: the 2-rank part was not run";
+#endif
+}
+
+TEST_F(SweepCli, ShardsMergeIntoTheWholeSweepAndExportCsv) {
+  const std::string grid = "sweep --N 3,4,5 --e 0.6:0.9:0.1 --k 1e4 --T 30 --replicas 2 -q";
+  ASSERT_EQ(run(grid + " --db whole.db").exit_code, 0);
+  std::string shards;
+  for (int i = 1; i <= 3; ++i) {
+    const CliResult r = run(grid + " --shard " + std::to_string(i) + "/3 --db shard" + std::to_string(i) + ".db");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    shards += " shard" + std::to_string(i) + ".db";
+  }
+  EXPECT_EQ(query(dir_ / "shard1.db", "SELECT count(*) FROM runs"), 8);  // 24 points in 3 shares
+  const CliResult merged = run("merge --into all.db" + shards);
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_NE(merged.out.find("24 runs added, 0 already there"), std::string::npos) << merged.out;
+  EXPECT_EQ(physics_by_key(export_csv("all.db")), physics_by_key(export_csv("whole.db")));
+  const CliResult again = run("merge --into all.db whole.db");
+  EXPECT_NE(again.out.find("0 runs added, 24 already there"), std::string::npos) << again.out;
+
+  // A conflicting copy of a point is refused with one line, exit 2, nothing merged.
+  fs::copy_file(dir_ / "shard1.db", dir_ / "bad.db");
+  sqlite3* db = nullptr;
+  sqlite3_open((dir_ / "bad.db").c_str(), &db);
+  sqlite3_exec(db, "UPDATE runs SET n_coll = n_coll * 1.0000001", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  const CliResult conflict = run("merge --into all.db bad.db");
+  EXPECT_EQ(conflict.exit_code, 2);
+  EXPECT_NE(conflict.err.find("conflicting results for point"), std::string::npos) << conflict.err;
+  EXPECT_EQ(std::count(conflict.err.begin(), conflict.err.end(), '\n'), 1);
+  EXPECT_EQ(query(dir_ / "all.db", "SELECT count(*) FROM runs"), 24);
+
+  // Export a selection to a CSV file.
+  const CliResult ex = run("export --db all.db --N 4 --e 0.7,0.8 --output n4.csv");
+  ASSERT_EQ(ex.exit_code, 0) << ex.err;
+  const std::string csv = slurp(dir_ / "n4.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2);
+  EXPECT_EQ(csv.rfind("id,created_utc,code_version,setup,engine,N,e,k,T0,", 0), 0u) << csv.substr(0, 200);
+}
+
+TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
+  write("grid.toml", "N = [3, 4]\ne = \"0.8:0.9:0.05\"\nk = 1e4\nT = 10\nreplicas = 2\nseed = 5\n");
+  write("grid.json", "{\"N\": [3, 4], \"e\": \"0.8:0.9:0.05\", \"k\": 1e4, \"T\": 10, \"replicas\": 2, \"seed\": 5}");
+  const CliResult flags = run("sweep --N 3,4 --e 0.80,0.85,0.9 --k 1e4 --T 10 --replicas 2 --seed 5 --dry-run");
+  ASSERT_EQ(flags.exit_code, 0) << flags.err;
+  EXPECT_NE(flags.out.find("# 12 points"), std::string::npos) << flags.out;
+  EXPECT_EQ(run("sweep --sweep grid.toml --dry-run").out, flags.out);
+  EXPECT_EQ(run("sweep --sweep grid.json --dry-run").out, flags.out);
+  EXPECT_NE(run("sweep --sweep grid.toml --seed 6 --dry-run").out, flags.out);  // flags override the file
+
+  write("unknown.toml", "N = 3\nspeed = 2\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--shard 3/2", "--shard"},         {"--shard 1", "--shard"},       {"--shard 0/2", "--shard"},
+      {"--replicas 0", "--replicas"},     {"--threads 0", "--threads"},   {"--e 0.5,2", "--e"},
+      {"--N 0:3:1", "--N"},               {"--k 1e4:1e2:x10", "--k"},     {"--tc 0.1", "--tc"},
+      {"--engine exact,warp", "--engine"}, {"--seed -1", "--seed"},       {"--sweep missing.toml", "--sweep"},
+      {"--sweep unknown.toml", "speed"},  {"--progress-every 0", "--progress-every"}, {"--db nodir/x.db", "--db"}};
+  for (const auto& [args, names] : cases) {
+    const CliResult r = run("sweep --T 5 " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "granchain.db")) << args;
+  }
+  const CliResult ex = run("export --db missing.db");
+  EXPECT_EQ(ex.exit_code, 2) << ex.err;
+  EXPECT_EQ(run("export --table nope").exit_code, 2);
+  EXPECT_EQ(run("merge --into a.db missing.db").exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "a.db"));
+}
