@@ -226,6 +226,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
           fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8.2f}\n", e, hard ? "inf" : fmt::format("{:g}", k),
                      num(r.n_tot_mean), num(r.n_tot_error), r.n_tot_min, r.n_tot_max,
                      fmt::format("{}/{}", r.collapsed, base.realizations), r.wall_seconds);
+          if (r.grazing_contacts > 0)
+            fmt::print("{:>19} ({} of {} collisions began below the engine's resolution, {} of them held; docs/engines.md)\n",
+                       "", r.grazing_contacts, r.collisions, r.held_contacts);
           std::fflush(stdout);
         }
       }

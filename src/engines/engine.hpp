@@ -21,6 +21,8 @@ struct EngineCounters {
   // within round-off (both occur only where relative motion has decayed below round-off).
   std::uint64_t grazing_contacts = 0;
   std::uint64_t resolution_skips = 0;
+  // Exact engine: grazing contacts held in contact longer because their pair keeps grazing.
+  std::uint64_t held_contacts = 0;
 };
 
 class Engine {

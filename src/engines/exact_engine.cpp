@@ -127,6 +127,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   lo_of_.assign(n_, 0);
   t0_.assign(n_, t);
   search_from_.assign(n_, 0.0);
+  grazing_streak_.assign(n_, 0);
+  hold_until_.assign(n_, -kInf);
   V0_.assign(n_, 0.0);
   generation_.assign(n_, 0);
   cache_.y.assign(n_, 0.0);
@@ -403,7 +405,20 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     double* hq = shq_.data();
     double h = kInf;
     int which = -1;
+    // Held pairs (see merge) take no part until their hold ends; the step stops there.
+    double hold_end = kInf;
+    auto held = [&](int k) {
+      if (k >= M) return false;
+      const double until = hold_until_[lo + k] - t0_[lo];  // in the cluster's local time
+      if (!(until > tau)) return false;
+      hold_end = std::min(hold_end, until);
+      return true;
+    };
     for (int k = 0; k < functions; ++k) {
+      if (held(k)) {
+        hq[k] = kInf;
+        continue;
+      }
       const Jet jk = jet_of(k);
       if (at_root(jk.f, jk.f1, jk.f2, jk.f3)) return {Root::Found, tau, k};
       hq[k] = quadratic_step(jk.f, jk.f1, -0.5 * m2);
@@ -415,7 +430,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     if (which >= 0) {
       h = safe_step(jet_of(which), kInf);
       for (int k = 0; k < functions; ++k) {
-        if (k == which || !(hq[k] < h)) continue;
+        if (k == which || !(hq[k] < h) || hq[k] == kInf) continue;
         const Jet jk = jet_of(k);
         if (jk.quartic_positive(h)) continue;  // proven positive over the whole step
         const double hk = safe_step(jk, h);
@@ -424,6 +439,10 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
           which = k;
         }
       }
+    }
+    if (hold_end < kInf && tau + h >= hold_end) {  // no root before the first hold ends: go there
+      tau = hold_end;
+      continue;
     }
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
     if (h == 0 && jet_of(which).f <= 0) {  // touching zero from below within round-off: see first_root
@@ -582,9 +601,25 @@ void ExactEngine::merge(int pair, double t, EventSink& sink) {
   // began, again and again. The contact's end is therefore searched from tau = 1e-6 tau_c on, when
   // the push has made the overlap (omega tau)^2 / 2 ~ 1e-11 of the neighbouring overlaps, far above
   // that round-off; a contact shorter than that, with an overlap below round-off, is not resolved.
+  //
+  // A pair that keeps grazing (the two ends of resting sub-clusters whose relative motion is below
+  // round-off touch, part and touch again every 1e-6 tau_c, each time counted as a collision and
+  // with no end in sight) is held in contact for a time that doubles with every consecutive
+  // grazing contact of that pair, 2^(s-1) 1e-6 tau_c after the s-th, up to tau_c: the chatter
+  // then costs O(log) events instead of one every 1e-6 tau_c. While held, the pair's spring acts
+  // on overlaps of round-off size only. Any resolvable contact beginning in the cluster releases
+  // every hold in it, since it brings relative motion that double precision resolves again.
   if (speed <= 1e-13 * (std::abs(v[na - 1]) + std::abs(v[na]))) {
     search_from_[a] = kResolutionSkip * tau_c_;
     ++counters_.grazing_contacts;
+    const int streak = ++grazing_streak_[pair];
+    if (streak >= 2) {
+      ++counters_.held_contacts;
+      hold_until_[pair] = t + std::min(1.0, kResolutionSkip * std::ldexp(1.0, std::min(streak - 1, 30))) * tau_c_;
+    }
+  } else {
+    grazing_streak_[pair] = 0;
+    for (int i = a; i < hi; ++i) hold_until_[i] = -kInf;
   }
   set_slot(cluster_slot(b), kInf, SlotKind::None, b);
   set_slot(gap_slot(pair), kInf, SlotKind::None, pair);

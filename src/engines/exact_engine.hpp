@@ -126,6 +126,10 @@ class ExactEngine final : public Engine {
   std::vector<int> lo_of_;         // lo_of_[p]: bottom particle of p's cluster
   std::vector<double> t0_, V0_;    // formation time and centre-of-mass velocity then
   std::vector<double> search_from_;  // local time from which the cluster's contact ends are searched
+  // Repeated grazing contacts of one pair (see merge): consecutive grazing begins of pair i, and
+  // the absolute time before which the overlap of pair i is not allowed to end its contact.
+  std::vector<int> grazing_streak_;
+  std::vector<double> hold_until_;
   std::vector<std::uint64_t> generation_;  // distinct for every formation (mode-cache key)
   std::uint64_t formations_ = 0;
   std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1

@@ -125,6 +125,8 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
       done = obs.open_contacts() == 0 && stop_rule_holds(spec, engine->state());
     }
     obs.outcome.t_stop = engine->time();
+    obs.outcome.grazing_contacts = engine->counters().grazing_contacts;
+    obs.outcome.held_contacts = engine->counters().held_contacts;
   } catch (const InelasticCollapseError& c) {
     obs.outcome.collapsed = true;
     obs.outcome.t_stop = c.time();
@@ -207,6 +209,9 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log) {
   std::vector<double> counts;
   res.n_tot_min = std::numeric_limits<std::uint64_t>::max();
   for (const RealizationOutcome& o : res.outcomes) {
+    res.collisions += o.n_tot();
+    res.grazing_contacts += o.grazing_contacts;
+    res.held_contacts += o.held_contacts;
     if (o.collapsed) {
       ++res.collapsed;
       continue;

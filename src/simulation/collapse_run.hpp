@@ -56,6 +56,9 @@ struct RealizationOutcome {
   std::uint64_t wall_hits = 0;
   bool collapsed = false;  // hard spheres: inelastic collapse detected
   double t_stop = 0;       // time at which the stop rule held (or the collapse was detected)
+  // Exact engine, contacts below its resolution (EngineCounters): grazing contacts, and those of
+  // them held longer because their pair kept grazing.
+  std::uint64_t grazing_contacts = 0, held_contacts = 0;
   std::uint64_t n_tot() const { return particle_collisions + wall_hits; }
 };
 
@@ -69,6 +72,9 @@ struct CollapseResult {
   double n_tot_mean = 0, n_tot_error = 0;
   std::uint64_t n_tot_min = 0, n_tot_max = 0;
   double wall_seconds = 0;
+  // Over all realisations: collisions counted, and the contacts among them below the exact
+  // engine's resolution (see RealizationOutcome).
+  std::uint64_t collisions = 0, grazing_contacts = 0, held_contacts = 0;
 };
 
 // Called with each realisation's collisions in order, realisations in order, from the calling

@@ -40,7 +40,9 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
             {"n_tot_max", r.n_tot_max},
             {"collapsed", r.collapsed},
             {"particle_collisions", pp},
-            {"wall_hits", wall}}},
+            {"wall_hits", wall},
+            {"grazing_contacts", r.grazing_contacts},
+            {"held_contacts", r.held_contacts}}},
           {"cost", {{"wall_seconds", r.wall_seconds}, {"threads", s.threads}}}};
 }
 
