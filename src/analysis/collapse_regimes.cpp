@@ -1,0 +1,217 @@
+#include "analysis/collapse_regimes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace granchain::analysis {
+
+namespace {
+
+// Inverts a small symmetric positive-definite matrix (Gauss-Jordan with partial pivoting).
+std::vector<double> invert(std::vector<double> a, int n) {
+  std::vector<double> inv(static_cast<std::size_t>(n * n), 0.0);
+  for (int i = 0; i < n; ++i) inv[i * n + i] = 1.0;
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(a[r * n + c]) > std::abs(a[p * n + c])) p = r;
+    if (a[p * n + c] == 0.0) throw std::invalid_argument("fit: the points do not determine the coefficients");
+    for (int k = 0; k < n; ++k) {
+      std::swap(a[c * n + k], a[p * n + k]);
+      std::swap(inv[c * n + k], inv[p * n + k]);
+    }
+    const double d = a[c * n + c];
+    for (int k = 0; k < n; ++k) {
+      a[c * n + k] /= d;
+      inv[c * n + k] /= d;
+    }
+    for (int r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const double f = a[r * n + c];
+      for (int k = 0; k < n; ++k) {
+        a[r * n + k] -= f * a[c * n + k];
+        inv[r * n + k] -= f * inv[c * n + k];
+      }
+    }
+  }
+  return inv;
+}
+
+std::vector<DataPoint> transformed(const std::vector<DataPoint>& pts, bool log_y) {
+  std::vector<DataPoint> out;
+  for (const auto& p : pts) {
+    if (!(p.x > 0)) throw std::invalid_argument("fit: k must be positive");
+    if (log_y) {
+      if (!(p.y > 0)) throw std::invalid_argument("power fit: n_coll must be positive");
+      out.push_back({std::log(p.x), std::log(p.y), p.error / p.y});
+    } else {
+      out.push_back({std::log10(p.x), p.y, p.error});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+PolynomialFit fit_polynomial(const std::vector<DataPoint>& pts, int degree) {
+  const int n = degree + 1;
+  if (degree < 1 || degree > 2) throw std::invalid_argument("fit: degree must be 1 or 2");
+  if (static_cast<int>(pts.size()) < n) throw std::invalid_argument("fit: too few points for the degree");
+  std::vector<double> A(static_cast<std::size_t>(n * n), 0.0), rhs(static_cast<std::size_t>(n), 0.0);
+  for (const auto& p : pts) {
+    if (!(p.error > 0)) throw std::invalid_argument("fit: every point needs a positive error");
+    const double w = 1.0 / (p.error * p.error);
+    double xi = 1.0;
+    for (int i = 0; i < n; ++i, xi *= p.x) {
+      rhs[i] += w * xi * p.y;
+      double xj = 1.0;
+      for (int j = 0; j < n; ++j, xj *= p.x) A[i * n + j] += w * xi * xj;
+    }
+  }
+  const std::vector<double> cov = invert(A, n);
+  PolynomialFit f;
+  f.coef.assign(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) f.coef[i] += cov[i * n + j] * rhs[j];
+  for (const auto& p : pts) {
+    double model = 0.0, xi = 1.0;
+    for (int i = 0; i < n; ++i, xi *= p.x) model += f.coef[i] * xi;
+    f.chi2 += (p.y - model) * (p.y - model) / (p.error * p.error);
+  }
+  f.dof = static_cast<int>(pts.size()) - n;
+  const double scale = f.dof > 0 ? std::max(1.0, f.chi2 / f.dof) : 1.0;
+  for (int i = 0; i < n; ++i) f.error.push_back(std::sqrt(cov[i * n + i] * scale));
+  f.covariance01 = cov[1] * scale;
+  return f;
+}
+
+LogFit fit_log_k(const std::vector<DataPoint>& pts) {
+  const PolynomialFit f = fit_polynomial(transformed(pts, false), 1);
+  return {f.coef[0], f.error[0], f.coef[1], f.error[1], f.chi2, f.dof};
+}
+
+PowerFit fit_power_k(const std::vector<DataPoint>& pts) {
+  const PolynomialFit f = fit_polynomial(transformed(pts, true), 1);
+  const double c = std::exp(f.coef[0]);
+  return {c, c * f.error[0], f.coef[1], f.error[1], f.chi2, f.dof};
+}
+
+const char* regime_name(Regime r) {
+  switch (r) {
+    case Regime::Uncollapsing: return "uncollapsing";
+    case Regime::Logarithmic: return "logarithmic";
+    case Regime::PowerLaw: return "power-law";
+  }
+  return "";
+}
+
+Classification classify(const std::vector<DataPoint>& all, double k_min, double z) {
+  std::vector<DataPoint> pts;
+  for (const auto& p : all)
+    if (p.x >= k_min) pts.push_back(p);
+  if (pts.size() < 3) throw std::invalid_argument("classify: needs at least 3 values of k in the asymptotic range");
+  Classification c;
+  c.log_fit = fit_log_k(pts);
+  bool positive = true;
+  for (const auto& p : pts) positive = positive && p.y > 0;
+  if (positive) c.power_fit = fit_power_k(pts);
+  if (pts.size() >= 4) {
+    const PolynomialFit q = fit_polynomial(transformed(pts, false), 2);
+    c.curvature = q.coef[2];
+    c.curvature_error = q.error[2];
+  }
+  if (!(c.log_fit.b > z * c.log_fit.b_error)) c.regime = Regime::Uncollapsing;
+  else if (pts.size() >= 4 && c.curvature > z * c.curvature_error) c.regime = Regime::PowerLaw;
+  else c.regime = Regime::Logarithmic;
+  return c;
+}
+
+CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window, double z) {
+  CriticalValue cv;
+  cv.method = "root of a weighted line through sqrt(b) against e (b ~ (e_c1 - e)^2, Eq. b_e_N)";
+  double e_max = -1.0;
+  for (const auto& p : b_of_e)
+    if (p.y > z * p.error) e_max = std::max(e_max, p.x);
+  if (e_max < 0) return cv;
+  std::vector<DataPoint> roots;
+  for (const auto& p : b_of_e)
+    if (p.y > z * p.error && p.x >= e_max - window) roots.push_back({p.x, std::sqrt(p.y), p.error / (2.0 * std::sqrt(p.y))});
+  if (roots.size() < 2) return cv;
+  const PolynomialFit f = fit_polynomial(roots, 1);
+  if (!(f.coef[1] < 0)) return cv;  // sqrt(b) must fall as e rises toward e_c1
+  cv.value = -f.coef[0] / f.coef[1];
+  const double var = (f.error[0] * f.error[0] + 2.0 * cv.value * f.covariance01 + cv.value * cv.value * f.error[1] * f.error[1]) /
+                     (f.coef[1] * f.coef[1]);
+  cv.error = std::sqrt(std::max(var, 0.0));
+  cv.low = cv.high = cv.value;
+  cv.found = true;
+  return cv;
+}
+
+CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<Regime>& regimes) {
+  CriticalValue cv;
+  cv.method = "between the largest e classified power-law and the next e of the grid";
+  std::vector<std::pair<double, Regime>> sorted;
+  for (std::size_t i = 0; i < e.size(); ++i) sorted.emplace_back(e[i], regimes.at(i));
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  int last_power = -1;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    if (sorted[i].second == Regime::PowerLaw) last_power = static_cast<int>(i);
+  if (last_power < 0 || last_power + 1 >= static_cast<int>(sorted.size())) return cv;
+  cv.low = sorted[last_power].first;
+  cv.high = sorted[last_power + 1].first;
+  cv.value = 0.5 * (cv.low + cv.high);
+  cv.error = 0.5 * (cv.high - cv.low);
+  cv.found = true;
+  return cv;
+}
+
+InverseNFit fit_inverse_n(const std::vector<double>& N, const std::vector<CriticalValue>& e_c) {
+  double sxx = 0, sxy = 0;
+  std::vector<DataPoint> pts;
+  for (std::size_t i = 0; i < N.size(); ++i) {
+    if (!e_c.at(i).found) continue;
+    const double sigma = std::max(e_c[i].error, 1e-12);
+    pts.push_back({1.0 / N[i], 1.0 - e_c[i].value, sigma});
+  }
+  if (pts.empty()) throw std::invalid_argument("fit_inverse_n: no critical value was found");
+  for (const auto& p : pts) {
+    const double w = 1.0 / (p.error * p.error);
+    sxx += w * p.x * p.x;
+    sxy += w * p.x * p.y;
+  }
+  InverseNFit f;
+  f.A = sxy / sxx;
+  for (const auto& p : pts) f.chi2 += (p.y - f.A * p.x) * (p.y - f.A * p.x) / (p.error * p.error);
+  f.dof = static_cast<int>(pts.size()) - 1;
+  const double scale = f.dof > 0 ? std::max(1.0, f.chi2 / f.dof) : 1.0;
+  f.A_error = std::sqrt(scale / sxx);
+  return f;
+}
+
+LineFit fit_alpha_vs_log10_n(const std::vector<DataPoint>& alpha_of_n) {
+  std::vector<DataPoint> pts;
+  for (const auto& p : alpha_of_n) pts.push_back({std::log10(p.x), p.y, p.error});
+  const PolynomialFit f = fit_polynomial(pts, 1);
+  return {f.coef[1], f.error[1], f.coef[0], f.error[0], f.chi2, f.dof};
+}
+
+Mean mean_exponent(const std::vector<DataPoint>& alphas) {
+  if (alphas.empty()) throw std::invalid_argument("mean_exponent: no values");
+  const double n = static_cast<double>(alphas.size());
+  Mean m;
+  double var = 0;
+  for (const auto& a : alphas) {
+    m.value += a.y / n;
+    var += a.error * a.error;
+  }
+  const double propagated = std::sqrt(var) / n;
+  double ss = 0;
+  for (const auto& a : alphas) ss += (a.y - m.value) * (a.y - m.value);
+  const double scatter = alphas.size() > 1 ? std::sqrt(ss / (n - 1) / n) : 0.0;
+  m.error = std::max(propagated, scatter);
+  return m;
+}
+
+}  // namespace granchain::analysis

@@ -1,0 +1,101 @@
+#pragma once
+// From n_coll(k) to the paper's regimes (Sec. III.C): weighted fits of n_coll = a + b log10 k and
+// n_coll = c k^alpha, the convex/concave test against log k, the critical restitutions e_c1
+// (where b vanishes) and e_c2 (the convex/concave boundary), and the fits (1 - e_c) = A/N and
+// alpha = p log10 N + q (Eq. alphafit). Every result carries a standard error.
+#include <string>
+#include <vector>
+
+namespace granchain::analysis {
+
+// One measured point: x, y and the standard error of y (> 0).
+struct DataPoint {
+  double x = 0, y = 0, error = 0;
+};
+
+// Weighted least-squares polynomial y = sum_j coef[j] x^j (degree 1 or 2), weights 1/error^2.
+// Errors are from the covariance matrix; when chi^2/dof > 1 they are multiplied by
+// sqrt(chi^2/dof) (the scatter says the stated errors are too small), never shrunk.
+struct PolynomialFit {
+  std::vector<double> coef, error;
+  double chi2 = 0;
+  int dof = 0;
+  double covariance01 = 0;  // cov(coef[0], coef[1]) after the same scaling
+};
+PolynomialFit fit_polynomial(const std::vector<DataPoint>& points, int degree);
+
+// n_coll = a + b log10 k over the given points (x = k): b is collisions per particle and unit
+// time gained per decade of k (Eq. b(e,N) with log = log10).
+struct LogFit {
+  double a = 0, a_error = 0, b = 0, b_error = 0, chi2 = 0;
+  int dof = 0;
+};
+LogFit fit_log_k(const std::vector<DataPoint>& n_coll_of_k);
+
+// n_coll = c k^alpha, fitted as ln n_coll = ln c + alpha ln k with errors error/n_coll.
+struct PowerFit {
+  double c = 0, c_error = 0, alpha = 0, alpha_error = 0, chi2 = 0;
+  int dof = 0;
+};
+PowerFit fit_power_k(const std::vector<DataPoint>& n_coll_of_k);
+
+enum class Regime { Uncollapsing, Logarithmic, PowerLaw };
+const char* regime_name(Regime r);  // "uncollapsing", "logarithmic", "power-law"
+
+// The classification of one (N, e) from n_coll(k) over the asymptotic range (points with
+// k >= k_min), by these criteria (z = 2 standard errors):
+//   uncollapsing: the slope b of a + b log10 k is not above zero by z errors;
+//   power-law:    b > 0 by z errors and n_coll is convex against log10 k (the curvature c of
+//                 a + b x + c x^2 is above zero by z errors): it grows faster than log k;
+//   logarithmic:  b > 0 by z errors and not convex.
+// Needs at least 3 points (4 for the curvature; with 3, convexity is never claimed).
+struct Classification {
+  Regime regime = Regime::Uncollapsing;
+  LogFit log_fit;
+  PowerFit power_fit;
+  double curvature = 0, curvature_error = 0;  // c of a + b x + c x^2, x = log10 k
+};
+Classification classify(const std::vector<DataPoint>& n_coll_of_k, double k_min = 0.0, double z = 2.0);
+
+// A critical value with its standard error, or a bracket where it was located between two grid
+// points (e_c2), and how it was found.
+struct CriticalValue {
+  double value = 0, error = 0;
+  double low = 0, high = 0;  // bracket (equal to value when not bracketed)
+  bool found = false;
+  std::string method;
+};
+
+// e_c1 for one N from b(e) (x = e, y = b): near e_c1 the paper finds b ~ ((1-e) - A/N)^2
+// (Eq. b_e_N), so sqrt(b) is linear in e and vanishes at e_c1. Fits sqrt(b) = s (e_c1 - e)
+// (weighted, error of sqrt(b) = error_b / (2 sqrt b)) over the points with b > z errors above zero
+// that lie within `window` below the largest such e, and returns the root with its propagated error.
+CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window = 0.05, double z = 2.0);
+
+// e_c2 for one N: the boundary between the power-law (convex) and the logarithmic regimes along e.
+// Returns the bracket between the largest e classified power-law and the next larger e of the
+// grid, value its midpoint and error half its width. Not found if no e is power-law or none above.
+CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<Regime>& regimes);
+
+// (1 - e_c) = A / N through the origin in 1/N, weighted by the errors of e_c (Eq. e-fit).
+struct InverseNFit {
+  double A = 0, A_error = 0, chi2 = 0;
+  int dof = 0;
+};
+InverseNFit fit_inverse_n(const std::vector<double>& N, const std::vector<CriticalValue>& e_c);
+
+// alpha = p log10 N + q (Eq. alphafit), weighted.
+struct LineFit {
+  double slope = 0, slope_error = 0, intercept = 0, intercept_error = 0, chi2 = 0;
+  int dof = 0;
+};
+LineFit fit_alpha_vs_log10_n(const std::vector<DataPoint>& alpha_of_n);
+
+// The mean of several alphas (Table 1's alpha bar) with its standard error: the larger of the
+// propagated error and the scatter's standard error of the mean.
+struct Mean {
+  double value = 0, error = 0;
+};
+Mean mean_exponent(const std::vector<DataPoint>& alphas);
+
+}  // namespace granchain::analysis

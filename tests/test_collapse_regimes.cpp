@@ -1,0 +1,139 @@
+// The analysis of n_coll(k) into the paper's regimes, on synthetic data with known a, b, alpha
+// and critical points (fixed seeds; tolerances from the stated errors).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/collapse_regimes.hpp"
+#include "model/random.hpp"
+
+using namespace granchain;
+using namespace granchain::analysis;
+
+namespace {
+
+const std::vector<double> kGrid = {1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
+
+// n(k) sampled on kGrid with Gaussian noise of standard deviation sigma(n) (relative or absolute).
+template <class F>
+std::vector<DataPoint> sample(F n_of_k, double rel_sigma, Rng& rng, double abs_sigma = 0.0) {
+  std::vector<DataPoint> pts;
+  for (double k : kGrid) {
+    const double n = n_of_k(k);
+    const double s = rel_sigma * n + abs_sigma;
+    pts.push_back({k, n + s * rng.normal(), s});
+  }
+  return pts;
+}
+
+}  // namespace
+
+// Over 2000 synthetic data sets the fitted slope's pull, with the unscaled covariance error, is
+// standard normal: mean 0 and standard deviation 1, each to within 4 of its sampling errors
+// (1/sqrt(2000) and 1/sqrt(4000)).
+TEST(CollapseRegimes, LogFitRecoversSlopeWithCalibratedErrors) {
+  Rng rng(11);
+  const double a = 3.0, b = 0.8;
+  double sum = 0, sum2 = 0;
+  const int sets = 2000;
+  for (int s = 0; s < sets; ++s) {
+    const auto pts = sample([&](double k) { return a + b * std::log10(k); }, 0.0, rng, 0.05);
+    const LogFit f = fit_log_k(pts);
+    const double unscaled = f.b_error / std::sqrt(std::max(1.0, f.chi2 / f.dof));
+    const double pull = (f.b - b) / unscaled;
+    sum += pull;
+    sum2 += pull * pull;
+  }
+  const double mean = sum / sets, sd = std::sqrt(sum2 / sets - mean * mean);
+  EXPECT_NEAR(mean, 0.0, 4.0 / std::sqrt(sets));
+  EXPECT_NEAR(sd, 1.0, 4.0 / std::sqrt(2.0 * sets));
+  // Without noise the fit is exact.
+  const LogFit exact = fit_log_k(sample([&](double k) { return a + b * std::log10(k); }, 1e-3, rng));
+  EXPECT_NEAR(exact.b, b, 4 * exact.b_error);
+  EXPECT_NEAR(exact.a, a, 4 * exact.a_error);
+}
+
+TEST(CollapseRegimes, PowerFitRecoversExponent) {
+  Rng rng(12);
+  const auto pts = sample([](double k) { return 0.7 * std::pow(k, 0.2); }, 0.01, rng);
+  const PowerFit f = fit_power_k(pts);
+  EXPECT_NEAR(f.alpha, 0.2, 4 * f.alpha_error);
+  EXPECT_LT(f.alpha_error, 0.005);
+  EXPECT_NEAR(f.c, 0.7, 4 * f.c_error);
+}
+
+TEST(CollapseRegimes, ClassifiesTheThreeRegimes) {
+  Rng rng(13);
+  // Uncollapsing: n_coll converges (approaches 11 as k^-1/2, as the soft column does).
+  const auto flat = sample([](double k) { return 11.0 - 30.0 / std::sqrt(k); }, 0.002, rng);
+  EXPECT_EQ(classify(flat).regime, Regime::Uncollapsing);
+  // Logarithmic: a + b log10 k with b = 1.
+  const auto logarithmic = sample([](double k) { return 20.0 + std::log10(k); }, 0.002, rng);
+  const Classification lc = classify(logarithmic);
+  EXPECT_EQ(lc.regime, Regime::Logarithmic);
+  EXPECT_NEAR(lc.log_fit.b, 1.0, 4 * lc.log_fit.b_error);
+  // Slower than log (concave): still logarithmic, not power-law.
+  const auto concave = sample([](double k) { return 20.0 + 3.0 * std::log10(std::log10(k)); }, 0.002, rng);
+  EXPECT_EQ(classify(concave).regime, Regime::Logarithmic);
+  // Power law with alpha = 0.2: convex against log k.
+  const auto power = sample([](double k) { return 2.0 * std::pow(k, 0.2); }, 0.005, rng);
+  const Classification pc = classify(power);
+  EXPECT_EQ(pc.regime, Regime::PowerLaw);
+  EXPECT_NEAR(pc.power_fit.alpha, 0.2, 4 * pc.power_fit.alpha_error);
+  // The asymptotic range: only k >= k_min enters.
+  EXPECT_EQ(classify(power, 1e7).log_fit.dof, 2);
+  EXPECT_THROW(classify(power, 1e9), std::invalid_argument);
+}
+
+// b(e) = B ((e_c1 - e))^2 below e_c1 = 0.894 and 0 above (Eq. b_e_N), sampled every 0.004 with
+// noise: e_c1 comes back within 4 of its errors, and the error is small.
+TEST(CollapseRegimes, CriticalRestitutionWhereTheLogSlopeVanishes) {
+  Rng rng(14);
+  const double ec = 0.894, B = 1500.0;
+  std::vector<DataPoint> b_of_e;
+  for (double e = 0.80; e < 0.921; e += 0.004) {
+    const double b = e < ec ? B * (ec - e) * (ec - e) : 0.0;
+    const double s = 0.02 + 0.03 * b;
+    b_of_e.push_back({e, b + s * rng.normal(), s});
+  }
+  const CriticalValue c = e_c1_from_b(b_of_e);
+  ASSERT_TRUE(c.found);
+  EXPECT_NEAR(c.value, ec, 4 * c.error);
+  EXPECT_LT(c.error, 0.004);
+  // No positive slope anywhere: nothing to find.
+  EXPECT_FALSE(e_c1_from_b({{0.9, 0.0, 0.1}, {0.95, 0.01, 0.1}}).found);
+}
+
+TEST(CollapseRegimes, SecondCriticalRestitutionIsBracketed) {
+  const std::vector<double> e = {0.90, 0.87, 0.884, 0.878, 0.89};
+  const std::vector<Regime> r = {Regime::Uncollapsing, Regime::PowerLaw, Regime::Logarithmic, Regime::PowerLaw,
+                                 Regime::Logarithmic};
+  const CriticalValue c = e_c2_from_regimes(e, r);
+  ASSERT_TRUE(c.found);
+  EXPECT_DOUBLE_EQ(c.low, 0.878);
+  EXPECT_DOUBLE_EQ(c.high, 0.884);
+  EXPECT_NEAR(c.value, 0.881, 1e-12);
+  EXPECT_NEAR(c.error, 0.003, 1e-12);
+  EXPECT_FALSE(e_c2_from_regimes({0.9, 0.95}, {Regime::Logarithmic, Regime::Uncollapsing}).found);
+}
+
+TEST(CollapseRegimes, InverseNAndAlphaFitsRecoverThePapersLaws) {
+  // (1 - e_c1) = 2.6 / N exactly (Eq. e-fit): A = 2.6.
+  std::vector<double> N = {20, 25, 30, 40, 50, 100, 150};
+  std::vector<CriticalValue> ec;
+  for (double n : N) ec.push_back({1.0 - 2.6 / n, 0.002, 0, 0, true, ""});
+  const InverseNFit f = fit_inverse_n(N, ec);
+  EXPECT_NEAR(f.A, 2.6, 1e-12);
+  EXPECT_GT(f.A_error, 0.0);
+  // alpha = 0.18 log10 N - 0.054 with noise 0.005 (Eq. alphafit).
+  Rng rng(15);
+  std::vector<DataPoint> alpha;
+  for (double n : N) alpha.push_back({n, 0.18 * std::log10(n) - 0.054 + 0.005 * rng.normal(), 0.005});
+  const LineFit a = fit_alpha_vs_log10_n(alpha);
+  EXPECT_NEAR(a.slope, 0.18, 4 * a.slope_error);
+  EXPECT_NEAR(a.intercept, -0.054, 4 * a.intercept_error);
+  // Table 1's alpha bar: the mean of four exponents, error at least the propagated one.
+  const Mean m = mean_exponent({{0.1, 0.20, 0.01}, {0.2, 0.21, 0.01}, {0.3, 0.19, 0.01}, {0.4, 0.20, 0.01}});
+  EXPECT_NEAR(m.value, 0.20, 1e-12);
+  EXPECT_NEAR(m.error, 0.005, 1e-12);  // propagated 0.01/2 > scatter 0.0041
+}
