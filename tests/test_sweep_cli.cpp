@@ -1,4 +1,4 @@
-// `granchain sweep`, `merge` and `export` as a user meets them: a 200-point sweep killed with
+// `granchain sweep`, `merge`, `export` and `analyze` as a user meets them: a 200-point sweep killed with
 // kill -9 and resumed, identical numbers on 1 thread, 2 threads and 2 MPI ranks, job-array shards
 // merged back, CSV export, and bad input.
 #include <signal.h>
@@ -10,7 +10,11 @@
 #include <thread>
 #include <vector>
 
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include "cli_fixture.hpp"
+#include "store/results_store.hpp"
 
 namespace {
 
@@ -211,4 +215,43 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
   EXPECT_EQ(run("export --table nope").exit_code, 2);
   EXPECT_EQ(run("merge --into a.db missing.db").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "a.db"));
+}
+
+// `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law
+// (e = 0.3), a logarithm (e = 0.86) and a converging curve (e = 0.95); it names each regime and
+// finds e_c2 between 0.3 and 0.86.
+TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
+  {
+    granchain::ResultsStore store((dir_ / "a.db").string());
+    for (double e : {0.3, 0.86, 0.95})
+      for (double k = 1e5; k <= 1e10; k *= 10) {
+        granchain::RunResult r;
+        r.spec.params.N = 25;
+        r.spec.params.e = e;
+        r.spec.params.k = k;
+        r.spec.T = 100;
+        r.spec.seed = static_cast<std::uint64_t>(std::log10(k));
+        const double x = std::log10(k);
+        r.n_coll.value = e == 0.3 ? 2.0 * std::pow(k, 0.2) : e == 0.86 ? 20.0 + x : 11.0 - 300.0 / std::sqrt(k);
+        r.n_coll.error = 0.01;
+        store.insert_run(r);
+      }
+  }
+  const CliResult r = run("analyze --db a.db --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["families"].size(), 1u);
+  const auto& curves = j["families"][0]["curves"];
+  ASSERT_EQ(curves.size(), 3u);
+  EXPECT_EQ(curves[0]["regime"], "power-law");
+  EXPECT_NEAR(curves[0]["power_fit"]["alpha"].get<double>(), 0.2, 4 * curves[0]["power_fit"]["alpha_err"].get<double>());
+  EXPECT_EQ(curves[1]["regime"], "logarithmic");
+  EXPECT_NEAR(curves[1]["log_fit"]["b"].get<double>(), 1.0, 4 * curves[1]["log_fit"]["b_err"].get<double>());
+  EXPECT_EQ(curves[2]["regime"], "uncollapsing");
+  EXPECT_EQ(j["families"][0]["e_c2"]["low"], 0.3);
+  EXPECT_EQ(j["families"][0]["e_c2"]["high"], 0.86);
+  const CliResult text = run("analyze --db a.db");
+  EXPECT_NE(text.out.find("power-law"), std::string::npos) << text.out;
+  EXPECT_EQ(run("analyze --db missing.db").exit_code, 2);
+  EXPECT_EQ(run("analyze --db a.db --k-min -1").exit_code, 2);
 }

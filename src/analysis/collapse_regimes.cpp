@@ -110,6 +110,7 @@ Classification classify(const std::vector<DataPoint>& all, double k_min, double 
   std::vector<DataPoint> pts;
   for (const auto& p : all)
     if (p.x >= k_min) pts.push_back(p);
+  std::sort(pts.begin(), pts.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
   if (pts.size() < 3) throw std::invalid_argument("classify: needs at least 3 values of k in the asymptotic range");
   Classification c;
   c.log_fit = fit_log_k(pts);
@@ -121,7 +122,12 @@ Classification classify(const std::vector<DataPoint>& all, double k_min, double 
     c.curvature = q.coef[2];
     c.curvature_error = q.error[2];
   }
-  if (!(c.log_fit.b > z * c.log_fit.b_error)) c.regime = Regime::Uncollapsing;
+  const DataPoint& p1 = pts[pts.size() - 2];
+  const DataPoint& p2 = pts.back();
+  const double decades = std::log10(p2.x / p1.x);
+  c.last_slope = (p2.y - p1.y) / decades;
+  c.last_slope_error = std::hypot(p1.error, p2.error) / decades;
+  if (!(c.log_fit.b > z * c.log_fit.b_error) || !(c.last_slope > z * c.last_slope_error)) c.regime = Regime::Uncollapsing;
   else if (pts.size() >= 4 && c.curvature > z * c.curvature_error) c.regime = Regime::PowerLaw;
   else c.regime = Regime::Logarithmic;
   return c;

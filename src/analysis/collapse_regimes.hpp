@@ -44,7 +44,9 @@ const char* regime_name(Regime r);  // "uncollapsing", "logarithmic", "power-law
 
 // The classification of one (N, e) from n_coll(k) over the asymptotic range (points with
 // k >= k_min), by these criteria (z = 2 standard errors):
-//   uncollapsing: the slope b of a + b log10 k is not above zero by z errors;
+//   uncollapsing: the slope b of a + b log10 k is not above zero by z errors, or the last decade's
+//                 own slope (between the two largest k) is not: a converging n_coll (approaching
+//                 its limit as k^-1/2) has b > 0 over any finite range, but its increments die out;
 //   power-law:    b > 0 by z errors and n_coll is convex against log10 k (the curvature c of
 //                 a + b x + c x^2 is above zero by z errors): it grows faster than log k;
 //   logarithmic:  b > 0 by z errors and not convex.
@@ -54,6 +56,7 @@ struct Classification {
   LogFit log_fit;
   PowerFit power_fit;
   double curvature = 0, curvature_error = 0;  // c of a + b x + c x^2, x = log10 k
+  double last_slope = 0, last_slope_error = 0;  // (n(k2) - n(k1)) / log10(k2/k1), the two largest k
 };
 Classification classify(const std::vector<DataPoint>& n_coll_of_k, double k_min = 0.0, double z = 2.0);
 

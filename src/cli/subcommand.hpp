@@ -27,5 +27,6 @@ Subcommand add_collapse_command(CLI::App& app);  // free-space and wall collapse
 Subcommand add_sweep_command(CLI::App& app);     // grids of runs: threads, MPI, shards, resuming
 Subcommand add_merge_command(CLI::App& app);     // joining results stores
 Subcommand add_export_command(CLI::App& app);    // stored results as CSV or JSON
+Subcommand add_analyze_command(CLI::App& app);   // regimes and critical values from stored runs
 
 }  // namespace granchain

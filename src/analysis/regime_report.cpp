@@ -1,0 +1,103 @@
+#include "analysis/regime_report.hpp"
+
+#include <cmath>
+#include <tuple>
+
+namespace granchain::analysis {
+
+namespace {
+
+// The e values of Table 1's mean exponent.
+bool table1_e(double e) {
+  for (double x : {0.1, 0.2, 0.3, 0.4})
+    if (std::abs(e - x) < 1e-9) return true;
+  return false;
+}
+
+}  // namespace
+
+RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
+  // (engine, N, kT0) -> e -> k -> (sum w, sum w n)
+  using Key = std::tuple<std::string, int, double>;
+  std::map<Key, std::map<double, std::map<double, std::pair<double, double>>>> groups;
+  for (const NcollRun& r : runs) {
+    if (!std::isfinite(r.k) || !(r.n_coll_err > 0) || !std::isfinite(r.n_coll)) continue;
+    auto& acc = groups[{r.engine, r.N, r.kT0}][r.e][r.k];
+    const double w = 1.0 / (r.n_coll_err * r.n_coll_err);
+    acc.first += w;
+    acc.second += w * r.n_coll;
+  }
+  RegimeReport report;
+  report.k_min = k_min;
+  for (const auto& [key, by_e] : groups) {
+    FamilyAnalysis fam;
+    std::tie(fam.engine, fam.N, fam.kT0) = key;
+    std::vector<DataPoint> b_of_e;
+    std::vector<double> es;
+    std::vector<Regime> regimes;
+    for (const auto& [e, by_k] : by_e) {
+      CurveAnalysis curve;
+      curve.e = e;
+      for (const auto& [k, acc] : by_k) curve.n_coll_of_k.push_back({k, acc.second / acc.first, 1.0 / std::sqrt(acc.first)});
+      int asymptotic = 0;
+      for (const auto& p : curve.n_coll_of_k) asymptotic += p.x >= k_min;
+      if (asymptotic >= 3) {
+        curve.c = classify(curve.n_coll_of_k, k_min);
+        curve.classified = true;
+        // e_c1 is where b vanishes: an uncollapsing curve counts as b = 0 (left out of the fit).
+        if (curve.c.regime != Regime::Uncollapsing) b_of_e.push_back({e, curve.c.log_fit.b, curve.c.log_fit.b_error});
+        es.push_back(e);
+        regimes.push_back(curve.c.regime);
+        if (table1_e(e) && curve.c.power_fit.alpha_error > 0)
+          fam.alphas.push_back({e, curve.c.power_fit.alpha, curve.c.power_fit.alpha_error});
+      }
+      fam.curves.push_back(std::move(curve));
+    }
+    if (!b_of_e.empty()) {
+      fam.e_c1 = e_c1_from_b(b_of_e);
+      fam.e_c2 = e_c2_from_regimes(es, regimes);
+    }
+    if (!fam.alphas.empty()) {
+      fam.alpha_bar = mean_exponent(fam.alphas);
+      fam.has_alpha_bar = true;
+    }
+    report.families.push_back(std::move(fam));
+  }
+  // Across N for each (engine, kT0).
+  std::map<std::pair<std::string, double>, std::vector<const FamilyAnalysis*>> by_temperature;
+  for (const auto& f : report.families) by_temperature[{f.engine, f.kT0}].push_back(&f);
+  for (const auto& [key, fams] : by_temperature) {
+    AcrossN a;
+    std::tie(a.engine, a.kT0) = key;
+    std::vector<double> N1, N2;
+    std::vector<CriticalValue> c1, c2;
+    std::vector<DataPoint> alpha_of_n;
+    for (const FamilyAnalysis* f : fams) {
+      if (f->e_c1.found) {
+        N1.push_back(f->N);
+        c1.push_back(f->e_c1);
+      }
+      if (f->e_c2.found) {
+        N2.push_back(f->N);
+        c2.push_back(f->e_c2);
+      }
+      if (f->has_alpha_bar && f->alpha_bar.error > 0) alpha_of_n.push_back({static_cast<double>(f->N), f->alpha_bar.value, f->alpha_bar.error});
+    }
+    if (N1.size() >= 2) {
+      a.A1 = fit_inverse_n(N1, c1);
+      a.has_A1 = true;
+    }
+    if (N2.size() >= 2) {
+      a.A2 = fit_inverse_n(N2, c2);
+      a.has_A2 = true;
+    }
+    if (alpha_of_n.size() >= 3) {
+      a.alpha_fit = fit_alpha_vs_log10_n(alpha_of_n);
+      a.has_alpha_fit = true;
+    }
+    report.across.push_back(a);
+  }
+  return report;
+}
+
+}  // namespace granchain::analysis

@@ -1,0 +1,58 @@
+#pragma once
+// The whole analysis of a set of stored driven-column runs: n_coll(k) for every (engine, N, kT0, e),
+// its regime, and per (engine, N, kT0) the critical restitutions and the power-law exponents; then
+// across N, the fits (1 - e_c) = A/N and alpha(N). What `granchain analyze` prints.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "analysis/collapse_regimes.hpp"
+
+namespace granchain::analysis {
+
+// One stored run's result (several runs of one point are combined by weighted mean).
+struct NcollRun {
+  std::string engine;
+  int N = 0;
+  double kT0 = 1, e = 0, k = 0;
+  double n_coll = 0, n_coll_err = 0;
+};
+
+struct CurveAnalysis {  // one (engine, N, kT0, e)
+  double e = 0;
+  std::vector<DataPoint> n_coll_of_k;  // combined over runs, k ascending
+  bool classified = false;             // enough values of k in the asymptotic range
+  Classification c;
+};
+
+struct FamilyAnalysis {  // one (engine, N, kT0)
+  std::string engine;
+  int N = 0;
+  double kT0 = 1;
+  std::vector<CurveAnalysis> curves;  // e ascending
+  CriticalValue e_c1, e_c2;
+  // Table 1: alpha at e = 0.1, 0.2, 0.3, 0.4 (those measured) and their mean.
+  std::vector<DataPoint> alphas;  // x = e
+  bool has_alpha_bar = false;
+  Mean alpha_bar;
+};
+
+struct AcrossN {  // one (engine, kT0), over N
+  std::string engine;
+  double kT0 = 1;
+  bool has_A1 = false, has_A2 = false, has_alpha_fit = false;
+  InverseNFit A1, A2;  // e_c1, e_c2
+  LineFit alpha_fit;   // alpha bar against log10 N
+};
+
+struct RegimeReport {
+  double k_min = 0;
+  std::vector<FamilyAnalysis> families;
+  std::vector<AcrossN> across;
+};
+
+// Groups the runs and analyses every group (see docs/analysis.md). Runs with a non-finite k
+// (hard spheres) or without an error are left out.
+RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min = 0.0);
+
+}  // namespace granchain::analysis

@@ -1,0 +1,167 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "analysis/regime_report.hpp"
+#include "cli/input_error.hpp"
+#include "cli/output_file.hpp"
+#include "cli/subcommand.hpp"
+#include "cli/value_list.hpp"
+#include "store/collapse_json.hpp"
+#include "store/results_store.hpp"
+#include "store/store_export.hpp"
+
+namespace granchain {
+
+namespace {
+
+struct AnalyzeFlags {
+  std::string db = "granchain.db", N, T0, engine, json_path;
+  double k_min = 0;
+  CLI::Option* json_option = nullptr;
+  bool quiet = false;
+};
+
+int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_);
+
+std::string pm(double v, double e, int digits = 3) {
+  if (!std::isfinite(v)) return "-";
+  return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
+}
+
+nlohmann::json critical_json(const analysis::CriticalValue& c) {
+  if (!c.found) return nullptr;
+  return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}, {"method", c.method}};
+}
+
+}  // namespace
+
+Subcommand add_analyze_command(CLI::App& app) {
+  auto impl_ = std::make_shared<AnalyzeFlags>();
+  CLI::App* sub_ = app.add_subcommand("analyze", "Fit stored n_coll(k), classify the regimes, and find e_c1, e_c2, A and alpha(N).");
+  sub_->footer(
+      "Reads the driven-column runs of the store, combines runs of one (engine, N, T0, e, k) by weighted mean,\n"
+      "and for every (engine, N, T0, e) with at least 3 values of k >= --k-min fits n_coll = a + b log10 k and\n"
+      "c k^alpha and classifies it (uncollapsing: b not > 2 errors; power-law: b > 0 and convex against\n"
+      "log10 k; logarithmic: otherwise). Per (engine, N, T0): e_c1 (root of sqrt(b) against e), e_c2 (the\n"
+      "convex/concave bracket), alpha bar (mean alpha at e = 0.1..0.4). Across N: (1 - e_c) = A/N and\n"
+      "alpha bar = p log10 N + q. Criteria and errors: docs/analysis.md.");
+  sub_->add_option("--db", impl_->db, "results store to read; default granchain.db")->type_name("FILE");
+  sub_->add_option("--N", impl_->N, "only these N (list or range)")->type_name("LIST");
+  sub_->add_option("--T0", impl_->T0, "only these floor temperatures (list or range)")->type_name("LIST");
+  sub_->add_option("--engine", impl_->engine, "only this engine (default: all, each analysed apart)");
+  sub_->add_option("--k-min", impl_->k_min, "start of the asymptotic range: only k >= k-min enters the fits; default 0");
+  impl_->json_option = sub_->add_option("--json", impl_->json_path, "write the analysis as JSON to FILE, or to standard output")
+                           ->expected(0, 1)
+                           ->type_name("[FILE]");
+  sub_->add_flag("--quiet,-q", impl_->quiet, "print no tables");
+  return {sub_, [impl_] { return execute_analyze(impl_); }};
+}
+
+namespace {
+
+int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
+  auto& o = *impl_;
+  const bool json_requested = o.json_option->count() > 0, json_stdout = json_requested && o.json_path.empty();
+  ExportSelection sel;
+  try {
+    if (!o.N.empty()) sel.values["N"] = parse_value_list(o.N, "--N");
+    if (!o.T0.empty()) sel.values["T0"] = parse_value_list(o.T0, "--T0");
+    if (!o.engine.empty()) sel.engines = {o.engine};
+    if (!(o.k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", o.k_min));
+    if (json_requested && !json_stdout) check_output_file(o.json_path);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  std::vector<analysis::NcollRun> runs;
+  try {
+    for (const auto& row : nlohmann::json::parse(export_results(o.db, sel, ExportFormat::Json))) {
+      if (row.at("setup") != "driven_column" || row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
+      runs.push_back({row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>(),
+                      row.at("e").get<double>(), row.at("k").get<double>(), row.at("n_coll").get<double>(),
+                      row.at("n_coll_err").get<double>()});
+    }
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  const analysis::RegimeReport rep = analysis::analyze_runs(runs, o.k_min);
+
+  nlohmann::json j = {{"k_min", o.k_min}, {"runs", runs.size()}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
+  for (const auto& f : rep.families) {
+    nlohmann::json curves = nlohmann::json::array();
+    for (const auto& c : f.curves) {
+      nlohmann::json pts = nlohmann::json::array();
+      for (const auto& p : c.n_coll_of_k) pts.push_back({{"k", p.x}, {"n_coll", p.y}, {"error", p.error}});
+      nlohmann::json cj = {{"e", c.e}, {"n_coll_of_k", pts}, {"classified", c.classified}};
+      if (c.classified) {
+        cj["regime"] = analysis::regime_name(c.c.regime);
+        cj["log_fit"] = {{"a", c.c.log_fit.a}, {"a_err", c.c.log_fit.a_error}, {"b", c.c.log_fit.b}, {"b_err", c.c.log_fit.b_error},
+                         {"chi2", c.c.log_fit.chi2}, {"dof", c.c.log_fit.dof}};
+        cj["power_fit"] = {{"c", c.c.power_fit.c}, {"c_err", c.c.power_fit.c_error}, {"alpha", c.c.power_fit.alpha},
+                           {"alpha_err", c.c.power_fit.alpha_error}, {"chi2", c.c.power_fit.chi2}, {"dof", c.c.power_fit.dof}};
+        cj["curvature"] = {{"value", c.c.curvature}, {"error", c.c.curvature_error}};
+      }
+      curves.push_back(cj);
+    }
+    j["families"].push_back({{"engine", f.engine}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
+                             {"e_c2", critical_json(f.e_c2)},
+                             {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
+                                                           : nlohmann::json(nullptr)}});
+  }
+  for (const auto& a : rep.across) {
+    auto inv = [](bool has, const analysis::InverseNFit& f) {
+      return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
+    };
+    j["across_N"].push_back({{"engine", a.engine}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
+                             {"alpha_vs_log10_N", a.has_alpha_fit ? nlohmann::json{{"slope", a.alpha_fit.slope},
+                                                                                   {"slope_err", a.alpha_fit.slope_error},
+                                                                                   {"intercept", a.alpha_fit.intercept},
+                                                                                   {"intercept_err", a.alpha_fit.intercept_error}}
+                                                                  : nlohmann::json(nullptr)}});
+  }
+  if (json_requested) {
+    const std::string text = j.dump(1) + "\n";
+    if (json_stdout) {
+      fmt::print("{}", text);
+      return kExitOk;
+    }
+    write_file_atomically(o.json_path, text);
+  }
+  if (o.quiet) return kExitOk;
+  fmt::print("{} runs; asymptotic range k >= {:g}\n", runs.size(), o.k_min);
+  for (const auto& f : rep.families) {
+    fmt::print("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
+    fmt::print("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature");
+    for (const auto& c : f.curves) {
+      if (!c.classified) {
+        fmt::print("{:>8.4g} {:>4} {:>14}\n", c.e, c.n_coll_of_k.size(), "(too few k)");
+        continue;
+      }
+      fmt::print("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
+                 pm(c.c.log_fit.b, c.c.log_fit.b_error), pm(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
+                 pm(c.c.curvature, c.c.curvature_error, 4));
+    }
+    fmt::print("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
+               f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
+               f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
+               f.has_alpha_bar ? pm(f.alpha_bar.value, f.alpha_bar.error) : "-");
+  }
+  for (const auto& a : rep.across) {
+    if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
+    fmt::print("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
+    if (a.has_A1) fmt::print("  1 - e_c1 = A/N with A = {}", pm(a.A1.A, a.A1.A_error, 2));
+    if (a.has_A2) fmt::print("  1 - e_c2 = A/N with A = {}", pm(a.A2.A, a.A2.A_error, 2));
+    if (a.has_alpha_fit)
+      fmt::print("  alpha bar = ({}) log10 N + ({})", pm(a.alpha_fit.slope, a.alpha_fit.slope_error),
+                 pm(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
+    fmt::print("\n");
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+}  // namespace granchain
