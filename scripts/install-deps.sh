@@ -8,6 +8,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3
   libgtest-dev libgmock-dev
   libopenmpi-dev openmpi-bin
+  python3-numpy python3-scipy python3-matplotlib
 )
 
 missing=()

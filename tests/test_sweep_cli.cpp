@@ -255,3 +255,38 @@ TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
   EXPECT_EQ(run("analyze --db missing.db").exit_code, 2);
   EXPECT_EQ(run("analyze --db a.db --k-min -1").exit_code, 2);
 }
+
+// `granchain trace` follows the very trajectory of `granchain run` with the same seed: over the
+// run's whole time it reports as many contact ends and floor hits as the run counted; no two
+// particles ever overlap by more than a contact can (d/10 at this k); and it draws the diagram.
+TEST_F(SweepCli, TraceFollowsTheRunsTrajectoryAndDrawsIt) {
+  const CliResult runj = run("run --N 4 --e 0.8 --k 1e4 --T 20 --transient 2 --seed 3 --no-db --json");
+  ASSERT_EQ(runj.exit_code, 0) << runj.err;
+  const auto events = nlohmann::json::parse(runj.out)["cost"]["events"].get<long>();
+  const CliResult tr = run("trace --N 4 --e 0.8 --k 1e4 --seed 3 --from 0 --to 22 --dt 0.01 --output t.csv --events ev.csv --plot t.png");
+  ASSERT_EQ(tr.exit_code, 0) << tr.err;
+  std::istringstream ev(slurp(dir_ / "ev.csv"));
+  long ends = 0;
+  for (std::string line; std::getline(ev, line);) ends += line.find("contact_end") != std::string::npos || line.find("floor_hit") != std::string::npos;
+  EXPECT_EQ(ends, events);
+  std::istringstream csv(slurp(dir_ / "t.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "t,z1,z2,z3,z4");
+  int rows = 0;
+  double worst = 1e9;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::vector<double> v;
+    std::istringstream r(line);
+    for (std::string c; std::getline(r, c, ',');) v.push_back(std::stod(c));
+    worst = std::min(worst, v[1] - 0.5);  // particle 1 above the floor, up to its overlap
+    for (int i = 1; i < 4; ++i) worst = std::min(worst, v[i + 1] - v[i] - 1.0);
+  }
+  EXPECT_EQ(rows, 2201);
+  EXPECT_GT(worst, -0.1);
+  EXPECT_TRUE(fs::exists(dir_ / "t.png") && fs::exists(dir_ / "t.pdf"));
+  EXPECT_EQ(run("trace --from 2 --to 1").exit_code, 2);
+  EXPECT_EQ(run("trace --engine hard").exit_code, 2);
+  EXPECT_EQ(run("trace --setup moon").exit_code, 2);
+}

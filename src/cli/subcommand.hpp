@@ -28,5 +28,6 @@ Subcommand add_sweep_command(CLI::App& app);     // grids of runs: threads, MPI,
 Subcommand add_merge_command(CLI::App& app);     // joining results stores
 Subcommand add_export_command(CLI::App& app);    // stored results as CSV or JSON
 Subcommand add_analyze_command(CLI::App& app);   // regimes and critical values from stored runs
+Subcommand add_trace_command(CLI::App& app);     // space-time diagrams z_i(t)
 
 }  // namespace granchain

@@ -1,0 +1,146 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include "cli/input_error.hpp"
+#include "cli/output_file.hpp"
+#include "cli/run_options.hpp"
+#include "cli/subcommand.hpp"
+#include "engines/engine.hpp"
+#include "simulation/trajectory.hpp"
+
+#ifndef GRANCHAIN_PLOTS_DIR
+#define GRANCHAIN_PLOTS_DIR "plots"
+#endif
+
+namespace granchain {
+
+namespace {
+
+struct TraceFlags {
+  std::map<std::string, std::string> values;  // run parameters given as flags
+  std::map<std::string, CLI::Option*> options;
+  std::string setup = "driven", output = "trace.csv", events_path, plot_path;
+  double from = 0, to = 1, dt = 1e-3, a = 1, v0 = 1, dv0 = 0.1;
+  long long realization = 0;
+};
+
+int execute_trace(const std::shared_ptr<TraceFlags>& impl_);
+
+}  // namespace
+
+Subcommand add_trace_command(CLI::App& app) {
+  auto impl_ = std::make_shared<TraceFlags>();
+  CLI::App* sub_ = app.add_subcommand("trace", "Record the heights z_i(t) of every particle over a time window (space-time diagram).");
+  sub_->footer(
+      "Driven column (default): the trajectory of `granchain run` with the same parameters and seed.\n"
+      "--setup free: launch --realization of `granchain collapse` (free space, Sec. III.D).\n"
+      "Writes CSV (t, z1, ..., zN) sampled every --dt in [--from, --to]; --events FILE adds every contact\n"
+      "begin/end and floor hit of the window; --plot PNG draws z_i(t) (PNG and PDF) with Debian's python3.");
+  for (const char* name : {"N", "e", "k", "T0", "seed", "engine", "dt-factor", "m", "d", "g"}) {
+    for (const ParameterInfo& p : run_parameters())
+      if (p.name == name)
+        impl_->options[name] = sub_->add_option("--" + p.name, impl_->values[name], p.help)->type_name(p.type);
+  }
+  sub_->add_option("--setup", impl_->setup, "driven (default) or free");
+  sub_->add_option("--from", impl_->from, "start of the window; >= 0; default 0");
+  sub_->add_option("--to", impl_->to, "end of the window; > from; default 1");
+  sub_->add_option("--dt", impl_->dt, "sampling interval; > 0, at most 1e7 samples; default 1e-3");
+  sub_->add_option("--a", impl_->a, "free space: initial spacing; default 1");
+  sub_->add_option("--v0", impl_->v0, "free space: launch speed; default 1");
+  sub_->add_option("--dv0", impl_->dv0, "free space: random velocity amplitude; default 0.1");
+  sub_->add_option("--realization", impl_->realization, "free space: launch number; >= 0; default 0");
+  sub_->add_option("--output,-o", impl_->output, "CSV file of the samples; default trace.csv")->type_name("FILE");
+  sub_->add_option("--events", impl_->events_path, "CSV file of the window's events")->type_name("FILE");
+  sub_->add_option("--plot", impl_->plot_path, "draw the space-time diagram to this PNG (and a PDF beside it)")->type_name("FILE");
+  return {sub_, [impl_] { return execute_trace(impl_); }};
+}
+
+namespace {
+
+int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
+  auto& o = *impl_;
+  TraceSpec spec;
+  try {
+    std::map<std::string, RawValue> raw;
+    for (const auto& [name, opt] : o.options)
+      if (opt->count() > 0) raw[name] = RawValue{o.values[name], ""};
+    if (o.setup != "driven" && o.setup != "free")
+      throw InputError(fmt::format("--setup = '{}' is not a set-up; valid: driven, free", o.setup));
+    if (is_hard_sphere_engine(raw.count("engine") ? raw["engine"].text : ""))
+      throw InputError("--engine: trace needs a soft engine (exact or reference); hard spheres have no overlaps to draw");
+    spec.run = resolve_run_options(raw).spec;
+    spec.free_space = o.setup == "free";
+    spec.launch = {o.a, o.v0, o.dv0};
+    spec.realization = static_cast<int>(o.realization);
+    spec.t_from = o.from;
+    spec.t_to = o.to;
+    spec.dt = o.dt;
+    if (!(o.from >= 0)) throw InputError(fmt::format("--from = {} is out of range; valid range: from >= 0", o.from));
+    if (!(o.to > o.from)) throw InputError(fmt::format("--to = {} is out of range; valid range: to > from = {}", o.to, o.from));
+    if (!(o.dt > 0) || (o.to - o.from) / o.dt > 1e7)
+      throw InputError(fmt::format("--dt = {} is out of range; valid range: dt > 0 with (to - from)/dt <= 1e7", o.dt));
+    if (o.realization < 0 || o.realization > 1000000000)
+      throw InputError(fmt::format("--realization = {} is out of range; valid range: 0 <= realization <= 1e9", o.realization));
+    if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0))
+      throw InputError("--a, --v0, --dv0: valid ranges a >= 0, v0 > 0, dv0 >= 0");
+    check_output_file(o.output, "--output");
+    if (!o.events_path.empty()) check_output_file(o.events_path, "--events");
+    if (!o.plot_path.empty()) check_output_file(o.plot_path, "--plot");
+  } catch (const InputError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  Trajectory tr;
+  try {
+    tr = record_trajectory(spec);
+  } catch (const UnphysicalStateError& e) {
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; nothing was written\n", e.what());
+    return kExitUnphysical;
+  }
+  std::string csv = "t";
+  for (int i = 1; i <= spec.run.params.N; ++i) csv += fmt::format(",z{}", i);
+  csv += "\n";
+  for (std::size_t s = 0; s < tr.t.size(); ++s) {
+    csv += fmt::format("{:.17g}", tr.t[s]);
+    for (double z : tr.z[s]) csv += fmt::format(",{:.17g}", z);
+    csv += "\n";
+  }
+  try {
+    write_file_atomically(o.output, csv, "--output");
+    if (!o.events_path.empty()) {
+      std::string ev = "t,kind,i,j,speed\n";
+      for (const Event& e : tr.events) {
+        const char* kind = e.kind == EventKind::ContactBegin ? "contact_begin" : e.kind == EventKind::ContactEnd ? "contact_end" : "floor_hit";
+        ev += fmt::format("{:.17g},{},{},{},{:.17g}\n", e.t, kind, e.kind == EventKind::FloorHit ? 0 : e.i + 1,
+                          e.kind == EventKind::FloorHit ? 1 : e.i + 2, e.speed);
+      }
+      write_file_atomically(o.events_path, ev, "--events");
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  }
+  fmt::print("{} samples of {} particles in [{:g}, {:g}], {} events: {}\n", tr.t.size(), spec.run.params.N, spec.t_from,
+             spec.t_to, tr.events.size(), o.output);
+  if (!o.plot_path.empty()) {
+    const std::string title = fmt::format("N = {}, e = {:g}, k = {:g}, {}{}", spec.run.params.N, spec.run.params.e,
+                                          spec.run.params.k, spec.free_space ? "free space" : "driven column",
+                                          fmt::format(", seed {}", spec.run.seed));
+    const std::string cmd = fmt::format("/usr/bin/python3 '{}/spacetime.py' '{}' '{}' '{}'", GRANCHAIN_PLOTS_DIR, o.output,
+                                        o.plot_path, title);
+    if (std::system(cmd.c_str()) != 0) {
+      fmt::print(stderr, "granchain: error: --plot: drawing failed (needs /usr/bin/python3 with matplotlib: "
+                         "scripts/install-deps.sh installs it); the CSV is written\n");
+      return kExitStoreFailed;
+    }
+    fmt::print("plot: {} (and PDF)\n", o.plot_path);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+}  // namespace granchain

@@ -1,0 +1,30 @@
+#pragma once
+// Space-time diagrams: the heights z_i(t) of every particle sampled on a regular grid of times in a
+// window, and the events inside it, for the driven column (the same trajectory as `granchain run`
+// with the same seed) or a free-space launch (the same as `granchain collapse`'s launch r).
+#include <vector>
+
+#include "engines/events.hpp"
+#include "model/collapse_setups.hpp"
+#include "simulation/driven_run.hpp"
+
+namespace granchain {
+
+struct TraceSpec {
+  RunSpec run;                  // parameters, engine and seed (T and transient unused)
+  bool free_space = false;      // false: driven column (gravity, thermal floor)
+  LaunchParameters launch;      // free space: the launch of Sec. III.D
+  int realization = 0;          // free space: launch number (seed derive_seed(seed, realization))
+  double t_from = 0, t_to = 1, dt = 1e-3;  // window and sampling interval
+};
+
+struct Trajectory {
+  std::vector<double> t;                // sample times
+  std::vector<std::vector<double>> z;   // z[s][i]: height of particle i + 1 at t[s]
+  std::vector<Event> events;            // contact begins and ends, floor hits in [t_from, t_to]
+};
+
+// Throws UnphysicalStateError if the dynamics turns unphysical.
+Trajectory record_trajectory(const TraceSpec& spec);
+
+}  // namespace granchain
