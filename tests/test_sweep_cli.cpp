@@ -250,8 +250,9 @@ TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
   EXPECT_EQ(curves[2]["regime"], "uncollapsing");
   EXPECT_EQ(j["families"][0]["e_c2"]["low"], 0.3);
   EXPECT_EQ(j["families"][0]["e_c2"]["high"], 0.86);
-  const CliResult text = run("analyze --db a.db");
+  const CliResult text = run("analyze --db a.db --plot fig");
   EXPECT_NE(text.out.find("power-law"), std::string::npos) << text.out;
+  EXPECT_TRUE(fs::exists(dir_ / "fig_N25_T01_exact.png") && fs::exists(dir_ / "fig_N25_T01_exact.pdf")) << text.out << text.err;
   EXPECT_EQ(run("analyze --db missing.db").exit_code, 2);
   EXPECT_EQ(run("analyze --db a.db --k-min -1").exit_code, 2);
 }

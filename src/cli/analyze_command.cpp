@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "analysis/regime_report.hpp"
@@ -12,12 +13,16 @@
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 
+#ifndef GRANCHAIN_PLOTS_DIR
+#define GRANCHAIN_PLOTS_DIR "plots"
+#endif
+
 namespace granchain {
 
 namespace {
 
 struct AnalyzeFlags {
-  std::string db = "granchain.db", N, T0, engine, json_path;
+  std::string db = "granchain.db", N, T0, engine, json_path, plot_prefix;
   double k_min = 0;
   CLI::Option* json_option = nullptr;
   bool quiet = false;
@@ -55,6 +60,10 @@ Subcommand add_analyze_command(CLI::App& app) {
   impl_->json_option = sub_->add_option("--json", impl_->json_path, "write the analysis as JSON to FILE, or to standard output")
                            ->expected(0, 1)
                            ->type_name("[FILE]");
+  sub_->add_option("--plot", impl_->plot_prefix,
+                   "draw n_coll against log k, log n_coll against log k, and n_coll against e for every (engine, N, T0) to "
+                   "PREFIX_N<N>_T0<T0>_<engine>.png and .pdf (plots/ncoll_panels.py; the analysis JSON goes to PREFIX.json)")
+      ->type_name("PREFIX");
   sub_->add_flag("--quiet,-q", impl_->quiet, "print no tables");
   return {sub_, [impl_] { return execute_analyze(impl_); }};
 }
@@ -71,6 +80,7 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
     if (!o.engine.empty()) sel.engines = {o.engine};
     if (!(o.k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", o.k_min));
     if (json_requested && !json_stdout) check_output_file(o.json_path);
+    if (!o.plot_prefix.empty()) check_output_file(o.plot_prefix + ".json", "--plot");
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -121,6 +131,16 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
                                                                                    {"intercept", a.alpha_fit.intercept},
                                                                                    {"intercept_err", a.alpha_fit.intercept_error}}
                                                                   : nlohmann::json(nullptr)}});
+  }
+  if (!o.plot_prefix.empty()) {
+    write_file_atomically(o.plot_prefix + ".json", j.dump(1) + "\n", "--plot");
+    const std::string cmd = fmt::format("/usr/bin/python3 '{}/ncoll_panels.py' '{}.json' '{}'", GRANCHAIN_PLOTS_DIR,
+                                        o.plot_prefix, o.plot_prefix);
+    if (std::system(cmd.c_str()) != 0) {
+      fmt::print(stderr, "granchain: error: --plot: drawing failed (needs /usr/bin/python3 with matplotlib: "
+                         "scripts/install-deps.sh installs it)\n");
+      return kExitStoreFailed;
+    }
   }
   if (json_requested) {
     const std::string text = j.dump(1) + "\n";
