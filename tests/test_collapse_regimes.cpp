@@ -143,3 +143,32 @@ TEST(CollapseRegimes, InverseNAndAlphaFitsRecoverThePapersLaws) {
   EXPECT_NEAR(m.value, 0.20, 1e-12);
   EXPECT_NEAR(m.error, 0.005, 1e-12);  // propagated 0.01/2 > scatter 0.0041
 }
+
+#include "analysis/condensation.hpp"
+
+// A K_i profile falling monotonically with height (energy dissipated upward from the floor) is not
+// condensed; one with a dip at particle 4 and a warmer layer above it is, by more than 3 errors.
+TEST(PartialCondensation, InversionAboveADipNearTheFloor) {
+  std::vector<ParticleValue> falling, dipped;
+  for (int i = 1; i <= 25; ++i) {
+    falling.push_back({0.5 * std::exp(-0.05 * i), 0.005});
+    const double low[4] = {0.45, 0.30, 0.15, 0.08};  // cooling fast above the floor, coldest at 4
+    dipped.push_back({i <= 4 ? low[i - 1] : 0.08 + 0.2 * (1.0 - std::exp(-(i - 4) / 2.0)) * std::exp(-0.01 * i), 0.005});
+  }
+  const CondensationCheck f = detect_partial_condensation(falling);
+  EXPECT_FALSE(f.condensed);
+  EXPECT_EQ(f.dip, 25);
+  const CondensationCheck d = detect_partial_condensation(dipped);
+  EXPECT_TRUE(d.condensed);
+  EXPECT_EQ(d.dip, 4);
+  EXPECT_GT(d.rise, 3 * d.rise_error);
+  // The same dip buried in noise 10 times larger is not claimed.
+  for (auto& k : dipped) k.error = 0.05;
+  EXPECT_FALSE(detect_partial_condensation(dipped).condensed);
+  // sigma_i / sigma_0,i: its minimum is found.
+  std::vector<ParticleValue> sigma(25, {1.0, 0.01});
+  sigma[5].value = 0.3;
+  const CondensationCheck s = detect_partial_condensation(falling, sigma, std::vector<double>(25, 2.0));
+  EXPECT_EQ(s.sigma_dip, 6);
+  EXPECT_NEAR(s.sigma_ratio_min, 0.15, 1e-12);
+}

@@ -2,8 +2,12 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <array>
+#include <map>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
+#include "analysis/condensation.hpp"
 #include "analysis/regime_report.hpp"
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
@@ -12,6 +16,7 @@
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
+#include "theory/equilibrium_column.hpp"
 
 #ifndef GRANCHAIN_PLOTS_DIR
 #define GRANCHAIN_PLOTS_DIR "plots"
@@ -33,6 +38,62 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_);
 std::string pm(double v, double e, int digits = 3) {
   if (!std::isfinite(v)) return "-";
   return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
+}
+
+// The partially condensed state of every (engine, N, T0, e) from the profiles of its runs at the
+// largest k stored (replicas combined per particle by weighted mean), against the elastic
+// column's sigma_0,i (theory/equilibrium_column) at the same N, k, T0.
+struct Condensation {
+  double k = 0;
+  analysis::CondensationCheck check;
+};
+using FamilyKey = std::tuple<std::string, int, double>;
+std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel) {
+  sel.table = ExportTable::Profiles;
+  // (engine, N, T0, e) -> k -> particle -> sums for K and sigma: w, w K, w sigma (weights 1/err^2)
+  std::map<FamilyKey, std::map<double, std::map<double, std::map<int, std::array<double, 4>>>>> acc;
+  std::map<std::tuple<int, double, double>, ChainParameters> params;
+  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
+    if (row.at("setup") != "driven_column" || row.at("k").is_null() || row.at("K_err").is_null() || row.at("z_std_err").is_null())
+      continue;
+    const double kerr = row.at("K_err").get<double>(), serr = row.at("z_std_err").get<double>();
+    if (!(kerr > 0) || !(serr > 0)) continue;
+    const FamilyKey key{row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>()};
+    const double e = row.at("e").get<double>(), k = row.at("k").get<double>();
+    auto& a = acc[key][e][k][row.at("i").get<int>()];
+    a[0] += 1.0 / (kerr * kerr);
+    a[1] += row.at("K_mean").get<double>() / (kerr * kerr);
+    a[2] += 1.0 / (serr * serr);
+    a[3] += row.at("z_std").get<double>() / (serr * serr);
+    ChainParameters p;
+    p.N = std::get<1>(key);
+    p.kT0 = std::get<2>(key);
+    p.k = k;
+    p.e = 1.0;
+    p.m = row.at("m").get<double>();
+    p.d = row.at("d").get<double>();
+    p.g = row.at("g").get<double>();
+    params[{p.N, p.kT0, k}] = p;
+  }
+  std::map<FamilyKey, std::map<double, Condensation>> out;
+  for (const auto& [key, by_e] : acc)
+    for (const auto& [e, by_k] : by_e) {
+      const auto& [k, particles] = *by_k.rbegin();  // the largest k
+      if (static_cast<int>(particles.size()) != std::get<1>(key) || particles.size() < 3) continue;
+      std::vector<analysis::ParticleValue> K, sigma;
+      for (const auto& [i, a] : particles) {
+        K.push_back({a[1] / a[0], 1.0 / std::sqrt(a[0])});
+        sigma.push_back({a[3] / a[2], 1.0 / std::sqrt(a[2])});
+      }
+      std::vector<double> sigma0;
+      try {
+        sigma0 = elastic_column_equilibrium(params.at({std::get<1>(key), std::get<2>(key), k})).z_std;
+      } catch (const std::exception&) {
+        sigma0.clear();  // no closed form for this column: the sigma ratio is left out
+      }
+      out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0)};
+    }
+  return out;
 }
 
 nlohmann::json critical_json(const analysis::CriticalValue& c) {
@@ -98,6 +159,13 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
     return kExitBadInput;
   }
   const analysis::RegimeReport rep = analysis::analyze_runs(runs, o.k_min);
+  std::map<FamilyKey, std::map<double, Condensation>> condensation;
+  try {
+    condensation = condensation_by_family(o.db, sel);
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
 
   nlohmann::json j = {{"k_min", o.k_min}, {"runs", runs.size()}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
   for (const auto& f : rep.families) {
@@ -113,6 +181,14 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
         cj["power_fit"] = {{"c", c.c.power_fit.c}, {"c_err", c.c.power_fit.c_error}, {"alpha", c.c.power_fit.alpha},
                            {"alpha_err", c.c.power_fit.alpha_error}, {"chi2", c.c.power_fit.chi2}, {"dof", c.c.power_fit.dof}};
         cj["curvature"] = {{"value", c.c.curvature}, {"error", c.c.curvature_error}};
+      }
+      const auto fc = condensation.find({f.engine, f.N, f.kT0});
+      if (fc != condensation.end() && fc->second.count(c.e)) {
+        const Condensation& pc = fc->second.at(c.e);
+        cj["partial_condensation"] = {{"k", pc.k}, {"condensed", pc.check.condensed}, {"K_dip_particle", pc.check.dip},
+                                      {"K_rise", pc.check.rise}, {"K_rise_err", pc.check.rise_error},
+                                      {"sigma_ratio_min", pc.check.sigma_dip ? nlohmann::json(pc.check.sigma_ratio_min) : nlohmann::json(nullptr)},
+                                      {"sigma_ratio_min_particle", pc.check.sigma_dip}};
       }
       curves.push_back(cj);
     }
@@ -154,15 +230,28 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   fmt::print("{} runs; asymptotic range k >= {:g}\n", runs.size(), o.k_min);
   for (const auto& f : rep.families) {
     fmt::print("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
-    fmt::print("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature");
+    fmt::print("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
+               "K_i inversion (at largest k)");
+    const auto fc = condensation.find({f.engine, f.N, f.kT0});
+    auto inversion = [&](double e) -> std::string {
+      if (fc == condensation.end() || !fc->second.count(e)) return "-";
+      const auto& ch = fc->second.at(e).check;
+      return ch.condensed ? fmt::format("yes: dip at {}, rise {}", ch.dip, pm(ch.rise, ch.rise_error)) : "no";
+    };
     for (const auto& c : f.curves) {
       if (!c.classified) {
         fmt::print("{:>8.4g} {:>4} {:>14}\n", c.e, c.n_coll_of_k.size(), "(too few k)");
         continue;
       }
-      fmt::print("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
+      fmt::print("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
                  pm(c.c.log_fit.b, c.c.log_fit.b_error), pm(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
-                 pm(c.c.curvature, c.c.curvature_error, 4));
+                 pm(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
+    }
+    if (fc != condensation.end()) {
+      std::string flagged;
+      for (const auto& [e, pc] : fc->second)
+        if (pc.check.condensed) flagged += fmt::format("{}{:g}", flagged.empty() ? "" : ", ", e);
+      fmt::print("  K_i inversion (partially condensed state, Fig. partial_cond) at e = {}\n", flagged.empty() ? "none" : flagged);
     }
     fmt::print("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
                f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
