@@ -1,0 +1,203 @@
+#include "cli/store_analysis.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <tuple>
+
+#include "store/results_store.hpp"
+#include "store/store_export.hpp"
+#include "theory/equilibrium_column.hpp"
+
+#ifndef GRANCHAIN_PLOTS_DIR
+#define GRANCHAIN_PLOTS_DIR "plots"
+#endif
+
+namespace granchain {
+
+namespace {
+
+std::string pm(double v, double e, int digits = 3) {
+  if (!std::isfinite(v)) return "-";
+  return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
+}
+
+// The partially condensed state of every (engine, N, T0, e) from the profiles of its runs at the
+// largest k stored (replicas combined per particle by weighted mean), against the elastic
+// column's sigma_0,i (theory/equilibrium_column) at the same N, k, T0.
+std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel) {
+  sel.table = ExportTable::Profiles;
+  // (engine, N, T0, e) -> k -> particle -> sums for K and sigma: w, w K, w sigma (weights 1/err^2)
+  std::map<FamilyKey, std::map<double, std::map<double, std::map<int, std::array<double, 4>>>>> acc;
+  std::map<std::tuple<int, double, double>, ChainParameters> params;
+  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
+    if (row.at("setup") != "driven_column" || row.at("k").is_null() || row.at("K_err").is_null() || row.at("z_std_err").is_null())
+      continue;
+    const double kerr = row.at("K_err").get<double>(), serr = row.at("z_std_err").get<double>();
+    if (!(kerr > 0) || !(serr > 0)) continue;
+    const FamilyKey key{row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>()};
+    const double e = row.at("e").get<double>(), k = row.at("k").get<double>();
+    auto& a = acc[key][e][k][row.at("i").get<int>()];
+    a[0] += 1.0 / (kerr * kerr);
+    a[1] += row.at("K_mean").get<double>() / (kerr * kerr);
+    a[2] += 1.0 / (serr * serr);
+    a[3] += row.at("z_std").get<double>() / (serr * serr);
+    ChainParameters p;
+    p.N = std::get<1>(key);
+    p.kT0 = std::get<2>(key);
+    p.k = k;
+    p.e = 1.0;
+    p.m = row.at("m").get<double>();
+    p.d = row.at("d").get<double>();
+    p.g = row.at("g").get<double>();
+    params[{p.N, p.kT0, k}] = p;
+  }
+  std::map<FamilyKey, std::map<double, Condensation>> out;
+  for (const auto& [key, by_e] : acc)
+    for (const auto& [e, by_k] : by_e) {
+      const auto& [k, particles] = *by_k.rbegin();  // the largest k
+      if (static_cast<int>(particles.size()) != std::get<1>(key) || particles.size() < 3) continue;
+      std::vector<analysis::ParticleValue> K, sigma;
+      for (const auto& [i, a] : particles) {
+        K.push_back({a[1] / a[0], 1.0 / std::sqrt(a[0])});
+        sigma.push_back({a[3] / a[2], 1.0 / std::sqrt(a[2])});
+      }
+      std::vector<double> sigma0;
+      try {
+        sigma0 = elastic_column_equilibrium(params.at({std::get<1>(key), std::get<2>(key), k})).z_std;
+      } catch (const std::exception&) {
+        sigma0.clear();  // no closed form for this column: the sigma ratio is left out
+      }
+      out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0)};
+    }
+  return out;
+}
+
+nlohmann::json critical_json(const analysis::CriticalValue& c) {
+  if (!c.found) return nullptr;
+  return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}, {"method", c.method}};
+}
+
+}  // namespace
+
+StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min) {
+  ExportSelection sel = selection;
+  sel.table = ExportTable::Runs;
+  StoreAnalysis a;
+  a.k_min = k_min;
+  std::vector<analysis::NcollRun> runs;
+  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
+    if (row.at("setup") != "driven_column" || row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
+    runs.push_back({row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>(),
+                    row.at("e").get<double>(), row.at("k").get<double>(), row.at("n_coll").get<double>(),
+                    row.at("n_coll_err").get<double>()});
+  }
+  a.runs = runs.size();
+  a.report = analysis::analyze_runs(runs, k_min);
+  a.condensation = condensation_by_family(db, sel);
+  nlohmann::json& j = a.json;
+  j = {{"k_min", k_min}, {"runs", a.runs}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
+  for (const auto& f : a.report.families) {
+    nlohmann::json curves = nlohmann::json::array();
+    for (const auto& c : f.curves) {
+      nlohmann::json pts = nlohmann::json::array();
+      for (const auto& p : c.n_coll_of_k) pts.push_back({{"k", p.x}, {"n_coll", p.y}, {"error", p.error}});
+      nlohmann::json cj = {{"e", c.e}, {"n_coll_of_k", pts}, {"classified", c.classified}};
+      if (c.classified) {
+        cj["regime"] = analysis::regime_name(c.c.regime);
+        cj["log_fit"] = {{"a", c.c.log_fit.a}, {"a_err", c.c.log_fit.a_error}, {"b", c.c.log_fit.b}, {"b_err", c.c.log_fit.b_error},
+                         {"chi2", c.c.log_fit.chi2}, {"dof", c.c.log_fit.dof}};
+        cj["power_fit"] = {{"c", c.c.power_fit.c}, {"c_err", c.c.power_fit.c_error}, {"alpha", c.c.power_fit.alpha},
+                           {"alpha_err", c.c.power_fit.alpha_error}, {"chi2", c.c.power_fit.chi2}, {"dof", c.c.power_fit.dof}};
+        cj["curvature"] = {{"value", c.c.curvature}, {"error", c.c.curvature_error}};
+      }
+      const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+      if (fc != a.condensation.end() && fc->second.count(c.e)) {
+        const Condensation& pc = fc->second.at(c.e);
+        cj["partial_condensation"] = {{"k", pc.k}, {"condensed", pc.check.condensed}, {"K_dip_particle", pc.check.dip},
+                                      {"K_rise", pc.check.rise}, {"K_rise_err", pc.check.rise_error},
+                                      {"sigma_ratio_min", pc.check.sigma_dip ? nlohmann::json(pc.check.sigma_ratio_min) : nlohmann::json(nullptr)},
+                                      {"sigma_ratio_min_particle", pc.check.sigma_dip}};
+      }
+      curves.push_back(cj);
+    }
+    j["families"].push_back({{"engine", f.engine}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
+                             {"e_c2", critical_json(f.e_c2)},
+                             {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
+                                                           : nlohmann::json(nullptr)}});
+  }
+  for (const auto& a : a.report.across) {
+    auto inv = [](bool has, const analysis::InverseNFit& f) {
+      return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
+    };
+    j["across_N"].push_back({{"engine", a.engine}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
+                             {"alpha_vs_log10_N", a.has_alpha_fit ? nlohmann::json{{"slope", a.alpha_fit.slope},
+                                                                                   {"slope_err", a.alpha_fit.slope_error},
+                                                                                   {"intercept", a.alpha_fit.intercept},
+                                                                                   {"intercept_err", a.alpha_fit.intercept_error}}
+                                                                  : nlohmann::json(nullptr)}});
+  }
+  return a;
+}
+
+std::string analysis_text(const StoreAnalysis& a) {
+  std::string out;
+  out += fmt::format("{} runs; asymptotic range k >= {:g}\n", a.runs, a.k_min);
+  for (const auto& f : a.report.families) {
+    out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
+    out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
+               "K_i inversion (at largest k)");
+    const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+    auto inversion = [&](double e) -> std::string {
+      if (fc == a.condensation.end() || !fc->second.count(e)) return "-";
+      const auto& ch = fc->second.at(e).check;
+      return ch.condensed ? fmt::format("yes: dip at {}, rise {}", ch.dip, pm(ch.rise, ch.rise_error)) : "no";
+    };
+    for (const auto& c : f.curves) {
+      if (!c.classified) {
+        out += fmt::format("{:>8.4g} {:>4} {:>14}\n", c.e, c.n_coll_of_k.size(), "(too few k)");
+        continue;
+      }
+      out += fmt::format("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
+                 pm(c.c.log_fit.b, c.c.log_fit.b_error), pm(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
+                 pm(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
+    }
+    if (fc != a.condensation.end()) {
+      std::string flagged;
+      for (const auto& [e, pc] : fc->second)
+        if (pc.check.condensed) flagged += fmt::format("{}{:g}", flagged.empty() ? "" : ", ", e);
+      out += fmt::format("  K_i inversion (partially condensed state, Fig. partial_cond) at e = {}\n", flagged.empty() ? "none" : flagged);
+    }
+    out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
+               f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
+               f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
+               f.has_alpha_bar ? pm(f.alpha_bar.value, f.alpha_bar.error) : "-");
+  }
+  for (const auto& a : a.report.across) {
+    if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
+    out += fmt::format("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
+    if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", pm(a.A1.A, a.A1.A_error, 2));
+    if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", pm(a.A2.A, a.A2.A_error, 2));
+    if (a.has_alpha_fit)
+      out += fmt::format("  alpha bar = ({}) log10 N + ({})", pm(a.alpha_fit.slope, a.alpha_fit.slope_error),
+                 pm(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
+    out += fmt::format("\n");
+  }
+  return out;
+}
+
+std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix) {
+  try {
+    write_file_atomically(prefix + ".json", a.json.dump(1) + "\n", "--plot");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}/ncoll_panels.py' '{}.json' '{}' > /dev/null", GRANCHAIN_PLOTS_DIR, prefix, prefix);
+  if (std::system(cmd.c_str()) != 0)
+    return "--plot: drawing failed (needs /usr/bin/python3 with matplotlib: scripts/install-deps.sh installs it)";
+  return "";
+}
+
+}  // namespace granchain

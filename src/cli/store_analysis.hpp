@@ -1,0 +1,38 @@
+#pragma once
+// The analysis of a results store, shared by `granchain analyze` and `granchain reproduce`: the
+// regimes and critical values of the stored n_coll(k) (analysis/regime_report), the partially
+// condensed state from the stored profiles (analysis/condensation), as JSON, as text tables, and
+// as the panels of Fig. cfreqlogN25 (plots/ncoll_panels.py).
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
+
+#include "analysis/condensation.hpp"
+#include "analysis/regime_report.hpp"
+#include "cli/output_file.hpp"
+#include "store/store_export.hpp"
+
+namespace granchain {
+
+struct Condensation {
+  double k = 0;  // the largest k stored for the point, whose profiles were used
+  analysis::CondensationCheck check;
+};
+using FamilyKey = std::tuple<std::string, int, double>;  // engine, N, kT0
+
+struct StoreAnalysis {
+  std::size_t runs = 0;
+  double k_min = 0;
+  analysis::RegimeReport report;
+  std::map<FamilyKey, std::map<double, Condensation>> condensation;  // by e
+  nlohmann::json json;
+};
+
+// Throws StoreError when the store cannot be read.
+StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
+std::string analysis_text(const StoreAnalysis& a);
+// Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>.png/.pdf; "" or what went wrong.
+std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix);
+
+}  // namespace granchain
