@@ -210,6 +210,11 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "granchain.db")) << args;
   }
+  const CliResult fig = run("reproduce --figure fig3");
+  EXPECT_EQ(fig.exit_code, 2);
+  EXPECT_NE(fig.err.find("--figure"), std::string::npos) << fig.err;
+  EXPECT_EQ(run("reproduce --preset slow").exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "reproduce.db"));
   const CliResult ex = run("export --db missing.db");
   EXPECT_EQ(ex.exit_code, 2) << ex.err;
   EXPECT_EQ(run("export --table nope").exit_code, 2);

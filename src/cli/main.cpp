@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   const std::vector<granchain::Subcommand> commands = {
       granchain::add_run_command(app),   granchain::add_theory_command(app), granchain::add_collapse_command(app),
       granchain::add_sweep_command(app), granchain::add_merge_command(app),  granchain::add_export_command(app),
-      granchain::add_analyze_command(app), granchain::add_trace_command(app)};
+      granchain::add_analyze_command(app), granchain::add_trace_command(app), granchain::add_reproduce_command(app)};
   const auto selected = [&]() -> const granchain::Subcommand* {
     for (const auto& c : commands)
       if (c.selected()) return &c;

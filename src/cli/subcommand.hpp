@@ -29,5 +29,6 @@ Subcommand add_merge_command(CLI::App& app);     // joining results stores
 Subcommand add_export_command(CLI::App& app);    // stored results as CSV or JSON
 Subcommand add_analyze_command(CLI::App& app);   // regimes and critical values from stored runs
 Subcommand add_trace_command(CLI::App& app);     // space-time diagrams z_i(t)
+Subcommand add_reproduce_command(CLI::App& app); // the paper's figures with a report
 
 }  // namespace granchain
