@@ -2,7 +2,9 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli/input_error.hpp"
@@ -10,7 +12,10 @@
 #include "cli/store_analysis.hpp"
 #include "cli/subcommand.hpp"
 #include "cli/value_list.hpp"
+#include "engines/engine.hpp"
+#include "simulation/collapse_run.hpp"
 #include "store/results_store.hpp"
+#include "theory/collapse_theory.hpp"
 #include "sweep/sweep_grid.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -49,8 +54,10 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "a killed reproduction resumes), analyses it (granchain analyze), draws the panels (PNG and PDF) and\n"
       "writes a Markdown report that sets every measured number beside the paper's, into --out.\n"
       "Presets: quick (k = 1e4..1e8, T = 1000; minutes on two cores), paper (k = 1e5..1e10, T = 1e4).\n"
+      "fig10 (Fig. ntot): free-space collision counts n_tot(k) for N = 3 (e = 0.01, 0.03, 0.05, k = 1e4..1e14, with the\n"
+      "predicted slopes) and N = 25 (e = 0.3, 0.5; quick k <= 1e7, paper k <= 1e10), report-fig10.md beside the theory.\n"
       "The other figures and Table 1 are not reproduced by this version yet.");
-  sub_->add_option("--figure", impl_->figure, "fig5 (the other figures: not yet)");
+  sub_->add_option("--figure", impl_->figure, "fig5 or fig10 (the other figures: not yet)");
   sub_->add_option("--preset", impl_->preset, "quick (default) or paper");
   sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   sub_->add_option("--out", impl_->out, "folder for the figures and the report; default reproduce")->type_name("DIR");
@@ -63,17 +70,12 @@ namespace {
 
 std::string pm(double v, double e, int digits) { return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits); }
 
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
-  auto& o = *impl_;
+int reproduce_fig10(const ReproduceFlags& o, int threads);
+
+int reproduce_fig5(const ReproduceFlags& o) {
   std::vector<SweepPoint> points;
   FigureGrid grid;
   try {
-    if (o.figure != "fig5")
-      throw InputError(fmt::format("--figure = '{}' is not available; valid: fig5 (the paper's other figures are not "
-                                   "reproduced by this version yet)", o.figure));
-    if (o.preset != "quick" && o.preset != "paper")
-      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper", o.preset));
-    if (o.threads < 0 || o.threads > 1024) throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", o.threads));
     grid = fig5_grid(o.preset);
     SweepDefinition def;
     def.raw["N"] = {"25", ""};
@@ -84,9 +86,6 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
     ResultsStore::preflight(o.db);
     std::filesystem::create_directories(o.out);
     check_output_file((std::filesystem::path(o.out) / "report.md").string(), "--out");
-  } catch (const InputError& e) {
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -172,6 +171,123 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
   }
   fmt::print("figure: {}_N25_T01_exact.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, report, o.db);
   return failures.empty() ? kExitOk : kExitUnphysical;
+}
+
+int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
+  const ReproduceFlags& o = *impl_;
+  if (o.figure != "fig5" && o.figure != "fig10") {
+    fmt::print(stderr, "granchain: error: --figure = '{}' is not available; valid: fig5, fig10 (the paper's other figures "
+                       "are not reproduced by this version yet)\n", o.figure);
+    return kExitBadInput;
+  }
+  if (o.preset != "quick" && o.preset != "paper") {
+    fmt::print(stderr, "granchain: error: --preset = '{}' is not a preset; valid: quick, paper\n", o.preset);
+    return kExitBadInput;
+  }
+  if (o.threads < 0 || o.threads > 1024) {
+    fmt::print(stderr, "granchain: error: --threads = {} is out of range; valid range: 1 <= threads <= 1024\n", o.threads);
+    return kExitBadInput;
+  }
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return o.figure == "fig5" ? reproduce_fig5(o) : reproduce_fig10(o, threads);
+}
+
+// The paper's Fig. ntot (Sec. III.D): collisions n_tot of a free-space collapse against k, for
+// N = 3 below e_c(3) (with the predicted log-k slope) and N = 25 (a power of k).
+int reproduce_fig10(const ReproduceFlags& o, int threads) {
+  struct Series {
+    int N;
+    double e;
+    std::string k;
+    int realizations;
+  };
+  const bool paper = o.preset == "paper";
+  std::vector<Series> series = {{3, 0.01, "1e4:1e14:x100", 1000}, {3, 0.03, "1e4:1e14:x100", 1000},
+                                {3, 0.05, "1e4:1e14:x100", 1000}, {25, 0.3, paper ? "1e4:1e10:x10" : "1e4:1e7:x10", 200},
+                                {25, 0.5, paper ? "1e4:1e10:x10" : "1e4:1e7:x10", 200}};
+  try {
+    ResultsStore::preflight(o.db);
+    std::filesystem::create_directories(o.out);
+    check_output_file((std::filesystem::path(o.out) / "report-fig10.md").string(), "--out");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  nlohmann::json plot = {{"series", nlohmann::json::array()}};
+  std::string md = fmt::format("# Fig. 10 (ntot), preset {}\n\nCommand: `granchain reproduce --figure fig10 --preset {}`. "
+                               "Free-space launches of Sec. III.D (a = v0 = 1, dv0 = 0.1, stop rule `ends`), exact engine; "
+                               "the same launches at every k, so slopes are paired per launch. Figure: `fig10.png` (and .pdf).\n\n",
+                               o.preset, o.preset);
+  std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
+  std::string n25 = "| e | k1 → k2 | n_tot(k2) | local α |\n|---|---|---|---|\n";
+  try {
+    ResultsStore store(o.db);
+    for (const Series& s : series) {
+      std::vector<CollapseResult> results;
+      for (double k : parse_value_list(s.k, "--k")) {
+        CollapseSpec spec;
+        spec.params.N = s.N;
+        spec.params.e = s.e;
+        spec.params.k = k;
+        spec.params.g = 0.0;
+        spec.realizations = s.realizations;
+        spec.threads = threads;
+        if (!o.quiet) fmt::print(stderr, "reproduce fig10: N = {}, e = {:g}, k = {:g}, {} launches\n", s.N, s.e, k, s.realizations);
+        results.push_back(run_collapse(spec));
+        store.insert_collapse(results.back());
+      }
+      nlohmann::json js = {{"N", s.N}, {"e", s.e}, {"k", nlohmann::json::array()}, {"n_tot", nlohmann::json::array()},
+                           {"error", nlohmann::json::array()}};
+      for (const auto& r : results) {
+        js["k"].push_back(r.spec.params.k);
+        js["n_tot"].push_back(r.n_tot_mean);
+        js["error"].push_back(r.n_tot_error);
+      }
+      if (s.N == 3) {
+        const KSlope last = k_slope(results[results.size() - 2], results.back());
+        const double per_decade = last.per_log10_k;  // k_slope: per decade of k already
+        js["slope_per_decade"] = std::log(10.0) * theory::collisions_slope_per_ln_k(s.e);
+        n3 += fmt::format("| {:g} | {:.3f} ± {:.3f} ({:g} → {:g}) | {:.4f} | {:.4f} |\n", s.e, per_decade,
+                          last.error, last.k1, last.k2,
+                          std::log(10.0) * theory::collisions_slope_per_ln_k(s.e), std::log(10.0) * theory::ntot_slope_per_ln_k(s.e));
+      } else {
+        for (std::size_t i = 0; i + 1 < results.size(); ++i) {
+          const KSlope sl = k_slope(results[i], results[i + 1]);
+          n25 += fmt::format("| {:g} | {:g} → {:g} | {:.1f} ± {:.1f} | {:.3f} ± {:.3f} |\n", s.e, sl.k1, sl.k2,
+                             results[i + 1].n_tot_mean, results[i + 1].n_tot_error, sl.alpha, sl.alpha_error);
+        }
+      }
+      plot["series"].push_back(js);
+    }
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  } catch (const UnphysicalStateError& e) {
+    fmt::print(stderr, "granchain: error: a launch turned unphysical: {}\n", e.what());
+    return kExitUnphysical;
+  }
+  const std::string prefix = (std::filesystem::path(o.out) / "fig10").string();
+  try {
+    write_file_atomically(prefix + ".json", plot.dump(1) + "\n", "--out");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  }
+  if (std::system(fmt::format("/usr/bin/python3 '{}/ntot.py' '{}.json' '{}'", GRANCHAIN_PLOTS_DIR, prefix, prefix).c_str()) != 0) {
+    fmt::print(stderr, "granchain: error: drawing failed (needs /usr/bin/python3 with matplotlib)\n");
+    return kExitStoreFailed;
+  }
+  md += "## N = 3\n\nThe paper's Eq. ntot-log counts intervals between collisions of one pair; all collisions grow twice as "
+        "fast (docs/collapse.md).\n\n" + n3 + "\n## N = 25\n\nThe paper: n_tot ∝ k^α with α ≈ 0.2 for e ≲ 0.6.\n\n" + n25;
+  const std::string report = (std::filesystem::path(o.out) / "report-fig10.md").string();
+  try {
+    write_file_atomically(report, md, "--out");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  }
+  fmt::print("figure: {}.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, report, o.db);
+  return kExitOk;
 }
 
 }  // namespace
