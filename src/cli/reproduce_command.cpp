@@ -68,6 +68,17 @@ Subcommand add_reproduce_command(CLI::App& app) {
 
 namespace {
 
+// Writes a whole output file, or reports why it could not (false).
+bool write_output(const std::string& path, const std::string& text) {
+  try {
+    write_file_atomically(path, text, "--out");
+    return true;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return false;
+  }
+}
+
 std::string pm(double v, double e, int digits) { return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits); }
 
 int reproduce_fig10(const ReproduceFlags& o, int threads);
@@ -163,12 +174,7 @@ int reproduce_fig5(const ReproduceFlags& o) {
   md += "\nCriteria and errors: docs/analysis.md. The quick preset's k range and time are far below the paper's; its numbers "
         "show the same three regimes, not the paper's precision.\n";
   const std::string report = (std::filesystem::path(o.out) / "report.md").string();
-  try {
-    write_file_atomically(report, md, "--out");
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return kExitStoreFailed;
-  }
+  if (!write_output(report, md)) return kExitStoreFailed;
   fmt::print("figure: {}_N25_T01_exact.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, report, o.db);
   return failures.empty() ? kExitOk : kExitUnphysical;
 }
@@ -267,12 +273,7 @@ int reproduce_fig10(const ReproduceFlags& o, int threads) {
     return kExitUnphysical;
   }
   const std::string prefix = (std::filesystem::path(o.out) / "fig10").string();
-  try {
-    write_file_atomically(prefix + ".json", plot.dump(1) + "\n", "--out");
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return kExitStoreFailed;
-  }
+  if (!write_output(prefix + ".json", plot.dump(1) + "\n")) return kExitStoreFailed;
   if (std::system(fmt::format("/usr/bin/python3 '{}/ntot.py' '{}.json' '{}'", GRANCHAIN_PLOTS_DIR, prefix, prefix).c_str()) != 0) {
     fmt::print(stderr, "granchain: error: drawing failed (needs /usr/bin/python3 with matplotlib)\n");
     return kExitStoreFailed;
@@ -280,12 +281,7 @@ int reproduce_fig10(const ReproduceFlags& o, int threads) {
   md += "## N = 3\n\nThe paper's Eq. ntot-log counts intervals between collisions of one pair; all collisions grow twice as "
         "fast (docs/collapse.md).\n\n" + n3 + "\n## N = 25\n\nThe paper: n_tot ∝ k^α with α ≈ 0.2 for e ≲ 0.6.\n\n" + n25;
   const std::string report = (std::filesystem::path(o.out) / "report-fig10.md").string();
-  try {
-    write_file_atomically(report, md, "--out");
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return kExitStoreFailed;
-  }
+  if (!write_output(report, md)) return kExitStoreFailed;
   fmt::print("figure: {}.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, report, o.db);
   return kExitOk;
 }
