@@ -51,6 +51,8 @@ def draw(family, prefix, k_min):
         e, n, s = (np.array(v) for v in zip(*pts))
         axes[2].errorbar(e, n, yerr=s, fmt="o-", ms=3, lw=0.8, color=kmap(i / max(1, len(ks) - 1)),
                          label="k = %.0e" % k, capsize=2)
+    for i, ec in enumerate(family.get("ec_lines", [])):  # Fig. cfe: e_c(3) ... e_c(N+1)
+        axes[2].axvline(ec, ls=":", color="0.4", lw=0.8, label="e_c(3..N+1)" if i == 0 else None)
     if family.get("e_c1"):
         axes[2].axvline(family["e_c1"]["value"], ls="--", color="k", lw=0.8, label="e_c1")
     if family.get("e_c2"):

@@ -210,7 +210,7 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "granchain.db")) << args;
   }
-  const CliResult fig = run("reproduce --figure fig3");
+  const CliResult fig = run("reproduce --figure fig7");
   EXPECT_EQ(fig.exit_code, 2);
   EXPECT_NE(fig.err.find("--figure"), std::string::npos) << fig.err;
   EXPECT_EQ(run("reproduce --preset slow").exit_code, 2);

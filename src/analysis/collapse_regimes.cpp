@@ -151,7 +151,9 @@ CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window, d
                      (f.coef[1] * f.coef[1]);
   cv.error = std::sqrt(std::max(var, 0.0));
   cv.low = cv.high = cv.value;
-  cv.found = true;
+  // The root must lie beyond the last positive slope and within the window above it: a line
+  // through two or three points far from the root extrapolates to nothing reliable.
+  cv.found = cv.value >= e_max && cv.value <= e_max + window && cv.value <= 1.0;
   return cv;
 }
 

@@ -35,13 +35,20 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_);
 // 0.90 by 0.01, 0.87 to 0.90 by 0.002); paper preset k = 1e5..1e10 and T = 1e4, quick preset
 // k = 1e4..1e8 and T = 1000 (the asymptotic range starting one decade above the smallest k).
 struct FigureGrid {
-  std::string e, k, T;
+  std::string N, e, k, T;
   double k_min;
 };
 FigureGrid fig5_grid(const std::string& preset) {
   const std::string e = "0.1:1.0:0.1,0.80:0.90:0.01,0.87:0.90:0.002";
-  if (preset == "paper") return {e, "1e5:1e10:x10", "1e4", 1e6};
-  return {e, "1e4:1e8:x10", "1000", 1e5};
+  if (preset == "paper") return {"25", e, "1e5:1e10:x10", "1e4", 1e6};
+  return {"25", e, "1e4:1e8:x10", "1000", 1e5};
+}
+// Figs. cflogk and cfe: N = 3, 4, 5, 6, e = 0.05 .. 1.0 by 0.05, the same k and T as Fig. 5.
+FigureGrid small_n_grid(const std::string& preset) {
+  FigureGrid g = fig5_grid(preset);
+  g.N = "3,4,5,6";
+  g.e = "0.05:1.0:0.05";
+  return g;
 }
 
 }  // namespace
@@ -54,10 +61,12 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "a killed reproduction resumes), analyses it (granchain analyze), draws the panels (PNG and PDF) and\n"
       "writes a Markdown report that sets every measured number beside the paper's, into --out.\n"
       "Presets: quick (k = 1e4..1e8, T = 1000; minutes on two cores), paper (k = 1e5..1e10, T = 1e4).\n"
+      "fig3, fig4 (Figs. cflogk, cfe): the same for N = 3, 4, 5, 6 and e = 0.05..1.0 by 0.05; panel (a) of each\n"
+      "figure is n_coll against log k (Fig. cflogk), panel (c) n_coll against e with e_c(3)..e_c(N+1) dotted (Fig. cfe).\n"
       "fig10 (Fig. ntot): free-space collision counts n_tot(k) for N = 3 (e = 0.01, 0.03, 0.05, k = 1e4..1e14, with the\n"
       "predicted slopes) and N = 25 (e = 0.3, 0.5; quick k <= 1e7, paper k <= 1e10), report-fig10.md beside the theory.\n"
       "The other figures and Table 1 are not reproduced by this version yet.");
-  sub_->add_option("--figure", impl_->figure, "fig5 or fig10 (the other figures: not yet)");
+  sub_->add_option("--figure", impl_->figure, "fig3, fig4, fig5 or fig10 (the other figures: not yet)");
   sub_->add_option("--preset", impl_->preset, "quick (default) or paper");
   sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   sub_->add_option("--out", impl_->out, "folder for the figures and the report; default reproduce")->type_name("DIR");
@@ -67,6 +76,9 @@ Subcommand add_reproduce_command(CLI::App& app) {
 }
 
 namespace {
+
+// report.md for Fig. 5 (the main job's), report-<figure>.md for the others.
+std::string report_name(const std::string& figure) { return figure == "fig5" ? "report.md" : "report-" + figure + ".md"; }
 
 // Writes a whole output file, or reports why it could not (false).
 bool write_output(const std::string& path, const std::string& text) {
@@ -83,20 +95,21 @@ std::string pm(double v, double e, int digits) { return fmt::format("{:.{}f} ± 
 
 int reproduce_fig10(const ReproduceFlags& o, int threads);
 
-int reproduce_fig5(const ReproduceFlags& o) {
+// Figures drawn from a driven-column sweep: fig3, fig4 (N = 3..6) and fig5 (N = 25).
+int reproduce_driven(const ReproduceFlags& o) {
   std::vector<SweepPoint> points;
   FigureGrid grid;
   try {
-    grid = fig5_grid(o.preset);
+    grid = o.figure == "fig5" ? fig5_grid(o.preset) : small_n_grid(o.preset);
     SweepDefinition def;
-    def.raw["N"] = {"25", ""};
+    def.raw["N"] = {grid.N, ""};
     def.raw["e"] = {grid.e, ""};
     def.raw["k"] = {grid.k, ""};
     def.raw["T"] = {grid.T, ""};
     points = build_sweep_points(def);
     ResultsStore::preflight(o.db);
     std::filesystem::create_directories(o.out);
-    check_output_file((std::filesystem::path(o.out) / "report.md").string(), "--out");
+    check_output_file((std::filesystem::path(o.out) / report_name(o.figure)).string(), "--out");
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -134,7 +147,7 @@ int reproduce_fig5(const ReproduceFlags& o) {
 
   // 2. Analysis, figure and report.
   ExportSelection sel;
-  sel.values["N"] = {25};
+  sel.values["N"] = parse_value_list(grid.N, "--N");
   sel.values["T0"] = {1};
   sel.values["k"] = parse_value_list(grid.k, "--k");
   sel.engines = {"exact"};
@@ -145,17 +158,33 @@ int reproduce_fig5(const ReproduceFlags& o) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitStoreFailed;
   }
-  const std::string prefix = (std::filesystem::path(o.out) / "fig5").string();
+  const std::string prefix = (std::filesystem::path(o.out) / o.figure).string();
+  // Fig. cfe marks the free-space estimates e_c(3), ..., e_c(N + 1) (Sec. III.B) as dotted lines.
+  if (o.figure != "fig5")
+    for (auto& fam : a.json["families"]) {
+      nlohmann::json lines = nlohmann::json::array();
+      for (int n = 3; n <= fam["N"].get<int>() + 1; ++n) lines.push_back(theory::ec_free(n));
+      fam["ec_lines"] = lines;
+    }
   const std::string problem = draw_ncoll_panels(a, prefix);
   if (!problem.empty()) {
     fmt::print(stderr, "granchain: error: {}\n", problem);
     return kExitStoreFailed;
   }
-  std::string md = fmt::format("# Fig. 5 (cfreqlogN25), preset {}\n\n", o.preset);
-  md += fmt::format("Command: `granchain reproduce --figure fig5 --preset {}`. N = 25, k_B T0 = 1, exact engine, k = {}, T = {} "
-                    "(transient T/10), {} runs; fits over k >= {:g}. Figure: `fig5_N25_T01_exact.png` (and .pdf).\n\n",
-                    o.preset, grid.k, grid.T, a.runs, grid.k_min);
-  if (!a.report.families.empty()) {
+  std::string md = fmt::format("# {} ({}), preset {}\n\n", o.figure,
+                               o.figure == "fig5" ? "cfreqlogN25" : o.figure == "fig3" ? "cflogk" : "cfe", o.preset);
+  md += fmt::format("Command: `granchain reproduce --figure {} --preset {}`. N = {}, k_B T0 = 1, exact engine, e = {}, k = {}, "
+                    "T = {} (transient T/10), {} runs; fits over k >= {:g}. Figures: `{}_N<N>_T01_exact.png` (and .pdf): "
+                    "panel (a) is Fig. cflogk, panel (c) Fig. cfe.\n\n",
+                    o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, grid.k_min, o.figure);
+  if (o.figure != "fig5") {
+    md += "| N | e_c1 (b = 0) | e_c2 (convex/concave) | free-space e_c(N) | e_c(N+1) |\n|---|---|---|---|---|\n";
+    for (const auto& f : a.report.families)
+      md += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} |\n", f.N, f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
+                        f.e_c2.found ? fmt::format("{:.3f} – {:.3f}", f.e_c2.low, f.e_c2.high) : "not found",
+                        theory::ec_free(f.N), theory::ec_free(f.N + 1));
+    md += "\n";
+  } else if (!a.report.families.empty()) {
     const auto& f = a.report.families.front();
     md += "| quantity | measured | paper |\n|---|---|---|\n";
     md += fmt::format("| e_c1 (b = 0) | {} | 0.894 |\n", f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found");
@@ -173,16 +202,17 @@ int reproduce_fig5(const ReproduceFlags& o) {
         analysis_text(a) + "```\n";
   md += "\nCriteria and errors: docs/analysis.md. The quick preset's k range and time are far below the paper's; its numbers "
         "show the same three regimes, not the paper's precision.\n";
-  const std::string report = (std::filesystem::path(o.out) / "report.md").string();
+  const std::string report = (std::filesystem::path(o.out) / report_name(o.figure)).string();
   if (!write_output(report, md)) return kExitStoreFailed;
-  fmt::print("figure: {}_N25_T01_exact.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, report, o.db);
+  fmt::print("figure: {}_N{}_T01_exact.png (and .pdf)\nreport: {}\nruns:   {}\n", prefix, o.figure == "fig5" ? "25" : "<N>",
+             report, o.db);
   return failures.empty() ? kExitOk : kExitUnphysical;
 }
 
 int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
   const ReproduceFlags& o = *impl_;
-  if (o.figure != "fig5" && o.figure != "fig10") {
-    fmt::print(stderr, "granchain: error: --figure = '{}' is not available; valid: fig5, fig10 (the paper's other figures "
+  if (o.figure != "fig3" && o.figure != "fig4" && o.figure != "fig5" && o.figure != "fig10") {
+    fmt::print(stderr, "granchain: error: --figure = '{}' is not available; valid: fig3, fig4, fig5, fig10 (the paper's other figures "
                        "are not reproduced by this version yet)\n", o.figure);
     return kExitBadInput;
   }
@@ -195,7 +225,7 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
     return kExitBadInput;
   }
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return o.figure == "fig5" ? reproduce_fig5(o) : reproduce_fig10(o, threads);
+  return o.figure == "fig10" ? reproduce_fig10(o, threads) : reproduce_driven(o);
 }
 
 // The paper's Fig. ntot (Sec. III.D): collisions n_tot of a free-space collapse against k, for
