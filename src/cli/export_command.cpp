@@ -72,15 +72,7 @@ int execute_export(const std::shared_ptr<ExportFlags>& impl_) {
                                      name, name, o.table));
       sel.values[name] = parse_value_list(o.lists[name], "--" + name);
     }
-    std::string cur;
-    for (char c : o.engine + ",") {
-      if (c == ',') {
-        if (!cur.empty()) sel.engines.push_back(cur);
-        cur.clear();
-      } else if (c != ' ') {
-        cur += c;
-      }
-    }
+    sel.engines = parse_name_list(o.engine);
     sel.where = o.where;
     if (!o.output.empty()) check_output_file(o.output, "--output");
   } catch (const InputError& e) {

@@ -2,15 +2,16 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
+#include "cli/plot_script.hpp"
 #include "cli/store_analysis.hpp"
 #include "cli/subcommand.hpp"
+#include "cli/sweep_progress.hpp"
 #include "cli/value_list.hpp"
 #include "engines/engine.hpp"
 #include "simulation/collapse_run.hpp"
@@ -91,8 +92,6 @@ bool write_output(const std::string& path, const std::string& text) {
   }
 }
 
-std::string pm(double v, double e, int digits) { return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits); }
-
 int reproduce_fig10(const ReproduceFlags& o, int threads);
 
 // Figures drawn from a driven-column sweep: fig3, fig4 (N = 3..6) and fig5 (N = 25).
@@ -120,10 +119,7 @@ int reproduce_driven(const ReproduceFlags& o) {
   std::vector<std::string> failures;
   try {
     ResultsStore store(o.db);
-    const auto done = store.point_keys();
-    std::vector<std::size_t> todo;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (!done.count(points[i].key)) todo.push_back(i);
+    const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
     if (!o.quiet)
       fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", o.figure, o.preset,
                  points.size(), points.size() - todo.size(), o.db, todo.size(), threads);
@@ -133,11 +129,7 @@ int reproduce_driven(const ReproduceFlags& o) {
     });
     const bool tty = isatty(STDERR_FILENO) != 0;
     SweepProgressCallback cb;
-    if (!o.quiet)
-      cb = [tty](const SweepProgress& p) {
-        fmt::print(stderr, "{}reproduce: {}/{} runs, elapsed {:.0f} s, ETA {}{}", tty ? "\r" : "", p.done, p.total, p.elapsed,
-                   std::isfinite(p.eta) ? fmt::format("{:.0f} s", p.eta) : "?", tty && !p.final ? "   " : "\n");
-      };
+    if (!o.quiet) cb = SweepProgressPrinter(tty, "reproduce");
     runner.run(threads, cb, tty ? 0.5 : 30.0);
   } catch (const StoreError& e) {
     fmt::print(stderr, "granchain: error: {}; repeat the command to resume\n", e.what());
@@ -180,17 +172,17 @@ int reproduce_driven(const ReproduceFlags& o) {
   if (o.figure != "fig5") {
     md += "| N | e_c1 (b = 0) | e_c2 (convex/concave) | free-space e_c(N) | e_c(N+1) |\n|---|---|---|---|---|\n";
     for (const auto& f : a.report.families)
-      md += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} |\n", f.N, f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
+      md += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} |\n", f.N, f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
                         f.e_c2.found ? fmt::format("{:.3f} – {:.3f}", f.e_c2.low, f.e_c2.high) : "not found",
                         theory::ec_free(f.N), theory::ec_free(f.N + 1));
     md += "\n";
   } else if (!a.report.families.empty()) {
     const auto& f = a.report.families.front();
     md += "| quantity | measured | paper |\n|---|---|---|\n";
-    md += fmt::format("| e_c1 (b = 0) | {} | 0.894 |\n", f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found");
+    md += fmt::format("| e_c1 (b = 0) | {} | 0.894 |\n", f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found");
     md += fmt::format("| e_c2 (convex/concave) | {} | 0.878 – 0.884 |\n",
                       f.e_c2.found ? fmt::format("{:.3f} – {:.3f}", f.e_c2.low, f.e_c2.high) : "not found");
-    md += fmt::format("| ᾱ (mean α at e = 0.1 … 0.4) | {} | 0.20 |\n", f.has_alpha_bar ? pm(f.alpha_bar.value, f.alpha_bar.error, 3) : "-");
+    md += fmt::format("| ᾱ (mean α at e = 0.1 … 0.4) | {} | 0.20 |\n", f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error, 3) : "-");
     std::string cond;
     const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
     if (fc != a.condensation.end())
@@ -304,8 +296,9 @@ int reproduce_fig10(const ReproduceFlags& o, int threads) {
   }
   const std::string prefix = (std::filesystem::path(o.out) / "fig10").string();
   if (!write_output(prefix + ".json", plot.dump(1) + "\n")) return kExitStoreFailed;
-  if (std::system(fmt::format("/usr/bin/python3 '{}/ntot.py' '{}.json' '{}'", GRANCHAIN_PLOTS_DIR, prefix, prefix).c_str()) != 0) {
-    fmt::print(stderr, "granchain: error: drawing failed (needs /usr/bin/python3 with matplotlib)\n");
+  const std::string problem = run_plot_script("ntot.py", {prefix + ".json", prefix});
+  if (!problem.empty()) {
+    fmt::print(stderr, "granchain: error: {}\n", problem);
     return kExitStoreFailed;
   }
   md += "## N = 3\n\nThe paper's Eq. ntot-log counts intervals between collisions of one pair; all collisions grow twice as "

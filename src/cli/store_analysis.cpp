@@ -4,25 +4,16 @@
 
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <tuple>
 
+#include "cli/plot_script.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 #include "theory/equilibrium_column.hpp"
 
-#ifndef GRANCHAIN_PLOTS_DIR
-#define GRANCHAIN_PLOTS_DIR "plots"
-#endif
-
 namespace granchain {
 
 namespace {
-
-std::string pm(double v, double e, int digits = 3) {
-  if (!std::isfinite(v)) return "-";
-  return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
-}
 
 // The partially condensed state of every (engine, N, T0, e) from the profiles of its runs at the
 // largest k stored (replicas combined per particle by weighted mean), against the elastic
@@ -81,6 +72,11 @@ nlohmann::json critical_json(const analysis::CriticalValue& c) {
 }
 
 }  // namespace
+
+std::string plus_minus(double v, double e, int digits) {
+  if (!std::isfinite(v)) return "-";
+  return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
+}
 
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min) {
   ExportSelection sel = selection;
@@ -153,7 +149,7 @@ std::string analysis_text(const StoreAnalysis& a) {
     auto inversion = [&](double e) -> std::string {
       if (fc == a.condensation.end() || !fc->second.count(e)) return "-";
       const auto& ch = fc->second.at(e).check;
-      return ch.condensed ? fmt::format("yes: dip at {}, rise {}", ch.dip, pm(ch.rise, ch.rise_error)) : "no";
+      return ch.condensed ? fmt::format("yes: dip at {}, rise {}", ch.dip, plus_minus(ch.rise, ch.rise_error)) : "no";
     };
     for (const auto& c : f.curves) {
       if (!c.classified) {
@@ -161,8 +157,8 @@ std::string analysis_text(const StoreAnalysis& a) {
         continue;
       }
       out += fmt::format("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
-                 pm(c.c.log_fit.b, c.c.log_fit.b_error), pm(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
-                 pm(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
+                 plus_minus(c.c.log_fit.b, c.c.log_fit.b_error), plus_minus(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
+                 plus_minus(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
     }
     if (fc != a.condensation.end()) {
       std::string flagged;
@@ -171,18 +167,18 @@ std::string analysis_text(const StoreAnalysis& a) {
       out += fmt::format("  K_i inversion (partially condensed state, Fig. partial_cond) at e = {}\n", flagged.empty() ? "none" : flagged);
     }
     out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
-               f.e_c1.found ? pm(f.e_c1.value, f.e_c1.error, 4) : "not found",
+               f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
                f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
-               f.has_alpha_bar ? pm(f.alpha_bar.value, f.alpha_bar.error) : "-");
+               f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-");
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
     out += fmt::format("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
-    if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", pm(a.A1.A, a.A1.A_error, 2));
-    if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", pm(a.A2.A, a.A2.A_error, 2));
+    if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
+    if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
     if (a.has_alpha_fit)
-      out += fmt::format("  alpha bar = ({}) log10 N + ({})", pm(a.alpha_fit.slope, a.alpha_fit.slope_error),
-                 pm(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
+      out += fmt::format("  alpha bar = ({}) log10 N + ({})", plus_minus(a.alpha_fit.slope, a.alpha_fit.slope_error),
+                 plus_minus(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
     out += fmt::format("\n");
   }
   return out;
@@ -194,10 +190,7 @@ std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix)
   } catch (const std::exception& e) {
     return e.what();
   }
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}/ncoll_panels.py' '{}.json' '{}' > /dev/null", GRANCHAIN_PLOTS_DIR, prefix, prefix);
-  if (std::system(cmd.c_str()) != 0)
-    return "--plot: drawing failed (needs /usr/bin/python3 with matplotlib: scripts/install-deps.sh installs it)";
-  return "";
+  return run_plot_script("ncoll_panels.py", {prefix + ".json", prefix});
 }
 
 }  // namespace granchain

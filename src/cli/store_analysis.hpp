@@ -29,6 +29,9 @@ struct StoreAnalysis {
   nlohmann::json json;
 };
 
+// "v ± e" with `digits` decimals, or "-" when v is not finite.
+std::string plus_minus(double v, double e, int digits = 3);
+
 // Throws StoreError when the store cannot be read.
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
 std::string analysis_text(const StoreAnalysis& a);

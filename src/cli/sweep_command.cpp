@@ -1,4 +1,5 @@
 #include "cli/subcommand.hpp"
+#include "cli/sweep_progress.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -50,34 +51,6 @@ long long integer_in(const std::string& option, const std::string& text, long lo
                                  option.substr(2), hi));
   return x;
 }
-
-std::string format_duration(double s) {
-  if (!std::isfinite(s)) return "?";
-  if (s < 10) return fmt::format("{:.1f} s", s);
-  if (s < 120) return fmt::format("{:.0f} s", s);
-  if (s < 7200) return fmt::format("{:.1f} min", s / 60);
-  return fmt::format("{:.1f} h", s / 3600);
-}
-
-class SweepProgressPrinter {
- public:
-  explicit SweepProgressPrinter(bool tty) : tty_(tty) {}
-  void operator()(const SweepProgress& p) {
-    const std::string line = fmt::format("sweep: {}/{} points{}, elapsed {}, ETA {}, {:.3g} collisions/s",
-                                         p.done, p.total, p.failed ? fmt::format(" ({} failed)", p.failed) : "",
-                                         format_duration(p.elapsed), p.final ? "0 s" : format_duration(p.eta),
-                                         p.collisions_per_second);
-    if (tty_) {
-      fmt::print(stderr, "\r{:<100}{}", line, p.final ? "\n" : "");
-    } else {
-      fmt::print(stderr, "{}\n", line);
-    }
-    std::fflush(stderr);
-  }
-
- private:
-  bool tty_;
-};
 
 }  // namespace
 
@@ -211,10 +184,8 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
         store = std::make_unique<ResultsStore>(db_path);
         done = store->point_keys();
       }
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        if (done.count(points[i].key)) ++already;
-        else todo.push_back(i);
-      }
+      todo = points_to_run(points, done);
+      already = points.size() - todo.size();
     } catch (const StoreError& e) {
       code = fail(e.what(), kExitStoreFailed);
     }
@@ -242,7 +213,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   // On a terminal one line rewritten in place; otherwise (a batch job's log) a line every 10 s.
   const bool show_progress = rank0 && (impl.progress_lines || !impl.quiet);
   const double every = impl.progress_every > 0 ? impl.progress_every : (tty ? 0.5 : 10.0);
-  SweepProgressPrinter printer(tty);
+  const SweepProgressPrinter printer(tty, "sweep");
   std::vector<std::string> failures;
   std::size_t inserted = 0;
   PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error) {

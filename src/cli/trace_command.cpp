@@ -1,19 +1,15 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <map>
 
 #include "cli/input_error.hpp"
 #include "cli/output_file.hpp"
+#include "cli/plot_script.hpp"
 #include "cli/run_options.hpp"
 #include "cli/subcommand.hpp"
 #include "engines/engine.hpp"
 #include "simulation/trajectory.hpp"
-
-#ifndef GRANCHAIN_PLOTS_DIR
-#define GRANCHAIN_PLOTS_DIR "plots"
-#endif
 
 namespace granchain {
 
@@ -129,11 +125,9 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     const std::string title = fmt::format("N = {}, e = {:g}, k = {:g}, {}{}", spec.run.params.N, spec.run.params.e,
                                           spec.run.params.k, spec.free_space ? "free space" : "driven column",
                                           fmt::format(", seed {}", spec.run.seed));
-    const std::string cmd = fmt::format("/usr/bin/python3 '{}/spacetime.py' '{}' '{}' '{}'", GRANCHAIN_PLOTS_DIR, o.output,
-                                        o.plot_path, title);
-    if (std::system(cmd.c_str()) != 0) {
-      fmt::print(stderr, "granchain: error: --plot: drawing failed (needs /usr/bin/python3 with matplotlib: "
-                         "scripts/install-deps.sh installs it); the CSV is written\n");
+    const std::string problem = run_plot_script("spacetime.py", {o.output, o.plot_path, title});
+    if (!problem.empty()) {
+      fmt::print(stderr, "granchain: error: --plot: {}; the CSV is written\n", problem);
       return kExitStoreFailed;
     }
     fmt::print("plot: {} (and PDF)\n", o.plot_path);

@@ -52,6 +52,13 @@ double tidy(double x) {
 
 }  // namespace
 
+std::vector<std::string> parse_name_list(const std::string& text) {
+  std::vector<std::string> names;
+  for (std::string& item : split(text, ','))
+    if (!item.empty()) names.push_back(std::move(item));
+  return names;
+}
+
 std::vector<double> parse_value_list(const std::string& text, const std::string& option) {
   std::vector<double> values;
   for (const std::string& item : split(text, ',')) {

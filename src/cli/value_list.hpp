@@ -10,4 +10,7 @@ namespace granchain {
 // Throws InputError naming `option` on malformed text or a range of more than 100000 values.
 std::vector<double> parse_value_list(const std::string& text, const std::string& option);
 
+// Names separated by commas ("exact, reference"), blanks dropped, empty items skipped.
+std::vector<std::string> parse_name_list(const std::string& text);
+
 }  // namespace granchain

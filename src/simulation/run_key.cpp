@@ -4,19 +4,17 @@
 
 namespace granchain {
 
-namespace {
-std::string number_text(double x) { return fmt::format("{}", x); }  // shortest exact form
-}  // namespace
+std::string exact_decimal(double x) { return fmt::format("{}", x); }
 
 std::string point_key_without_seed(const RunSpec& s) {
   std::string key = fmt::format("driven_column engine={} N={} e={} k={} T0={} m={} d={} g={} T={} transient={} "
                                 "sample_interval={} bins={}",
-                                s.engine.name, s.params.N, number_text(s.params.e), number_text(s.params.k),
-                                number_text(s.params.kT0), number_text(s.params.m), number_text(s.params.d),
-                                number_text(s.params.g), number_text(s.T), number_text(s.transient),
-                                number_text(s.sample_interval), s.bins);
-  if (is_hard_sphere_engine(s.engine.name)) key += " tc=" + number_text(s.engine.hard.tc);
-  else if (s.engine.name != "exact") key += " dt_factor=" + number_text(s.engine.dt_factor);
+                                s.engine.name, s.params.N, exact_decimal(s.params.e), exact_decimal(s.params.k),
+                                exact_decimal(s.params.kT0), exact_decimal(s.params.m), exact_decimal(s.params.d),
+                                exact_decimal(s.params.g), exact_decimal(s.T), exact_decimal(s.transient),
+                                exact_decimal(s.sample_interval), s.bins);
+  if (is_hard_sphere_engine(s.engine.name)) key += " tc=" + exact_decimal(s.engine.hard.tc);
+  else if (s.engine.name != "exact") key += " dt_factor=" + exact_decimal(s.engine.dt_factor);
   return key;
 }
 

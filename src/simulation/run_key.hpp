@@ -8,6 +8,9 @@
 
 namespace granchain {
 
+// The shortest decimal text that reads back as exactly x ("0.88", "100000000").
+std::string exact_decimal(double x);
+
 // "driven_column engine=exact N=25 e=0.88 k=100000000 T0=1 ... seed=7". Engine options enter
 // only where they act: dt_factor for the time-stepped engines, tc for the hard engine.
 std::string point_key(const RunSpec& spec);

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "store/sqlite_statement.hpp"
 
@@ -95,20 +96,44 @@ bool has_table(sqlite3* db, const char* name) {
   return st.column_int(0) > 0;
 }
 
-// The first of `columns` whose value differs between the target's row `id` and the source row,
-// as "name: target vs source"; "" when all are equal (NULL equals NULL).
-template <std::size_t n>
-std::string first_difference(sqlite3* target, const char* table, std::int64_t id, SqlStatement& row, const char* (&columns)[n]) {
-  for (const char* c : columns) {
-    SqlStatement same(target, fmt::format("SELECT {0} IS ?, {0} FROM {1} WHERE id = ?", c, table).c_str());
-    const int i = column_index(row, c);
-    same.bind_value(1, row.column_value(i));
-    same.bind(2, id);
-    same.row();
-    if (same.column_int(0) == 0) return fmt::format("{}: {} vs {}", c, describe(same, 1), describe(row, i));
+// Compares the result columns of a target row with a source row, with one statement prepared
+// for the whole merge: SELECT c1 IS ?, c2 IS ?, ..., c1, c2, ... FROM table WHERE id = ?.
+class ResultComparer {
+ public:
+  template <std::size_t n>
+  ResultComparer(sqlite3* target, const char* table, const char* (&columns)[n])
+      : columns_(columns, columns + n), same_(target, sql(table, columns_).c_str()) {}
+
+  // The first column whose value differs between the target's row `id` and the source row, as
+  // "name: target vs source"; "" when all are equal (NULL equals NULL).
+  std::string first_difference(std::int64_t id, SqlStatement& row) {
+    const int n = static_cast<int>(columns_.size());
+    std::vector<int> at;
+    for (int c = 0; c < n; ++c) {
+      at.push_back(column_index(row, columns_[c]));
+      same_.bind_value(c + 1, row.column_value(at.back()));
+    }
+    same_.bind(n + 1, id);
+    same_.row();
+    std::string diff;
+    for (int c = 0; c < n && diff.empty(); ++c)
+      if (same_.column_int(c) == 0) diff = fmt::format("{}: {} vs {}", columns_[c], describe(same_, n + c), describe(row, at[c]));
+    same_.reset();
+    return diff;
   }
-  return "";
-}
+
+ private:
+  static std::string sql(const char* table, const std::vector<const char*>& columns) {
+    std::string tests, values;
+    for (const char* c : columns) {
+      tests += fmt::format("{}{} IS ?", tests.empty() ? "" : ", ", c);
+      values += fmt::format(", {}", c);
+    }
+    return fmt::format("SELECT {}{} FROM {} WHERE id = ?", tests, values, table);
+  }
+  std::vector<const char*> columns_;
+  SqlStatement same_;
+};
 
 void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
                 MergeReport& report) {
@@ -119,6 +144,7 @@ void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path
   const int run_columns = rows.columns() - 3;
   SqlStatement find(target, "SELECT run_id FROM run_points WHERE point_key = ?");
   SqlStatement add_key(target, "INSERT INTO run_points(point_key, run_id, sweep_seed, replica) VALUES(?,?,?,?)");
+  ResultComparer compare(target, "runs", kRunResultColumns);
   std::unique_ptr<SqlStatement> insert;
   while (rows.row()) {
     const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
@@ -130,7 +156,7 @@ void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path
       const std::int64_t existing = found ? find.column_int(0) : 0;
       find.reset();
       if (found) {
-        const std::string diff = first_difference(target, "runs", existing, rows, kRunResultColumns);
+        const std::string diff = compare.first_difference(existing, rows);
         if (!diff.empty())
           throw MergeConflict(fmt::format("merge: conflicting results for point '{}': run {} of '{}' and run {} of '{}' "
                                           "differ ({}); nothing was merged",
@@ -161,6 +187,7 @@ void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_
   std::string where;
   for (const char* c : kCollapseIdentity) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
   SqlStatement find(target, ("SELECT id FROM collapse_runs WHERE " + where).c_str());
+  ResultComparer compare(target, "collapse_runs", kCollapseResultColumns);
   std::unique_ptr<SqlStatement> insert;
   while (rows.row()) {
     const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
@@ -170,7 +197,7 @@ void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_
     const std::int64_t existing = found ? find.column_int(0) : 0;
     find.reset();
     if (found) {
-      const std::string diff = first_difference(target, "collapse_runs", existing, rows, kCollapseResultColumns);
+      const std::string diff = compare.first_difference(existing, rows);
       if (!diff.empty())
         throw MergeConflict(fmt::format("merge: conflicting collapse counts: collapse run {} of '{}' and {} of '{}' have the "
                                         "same parameters and seed but differ ({}); nothing was merged",

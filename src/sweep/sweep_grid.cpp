@@ -21,8 +21,6 @@ const std::vector<std::string>& sweep_grid_parameters() {
 
 namespace {
 
-std::string number_text(double x) { return fmt::format("{}", x); }  // shortest exact form
-
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char c : s) {
@@ -32,31 +30,17 @@ std::uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : text + ",") {
-    if (c == ',') {
-      if (!cur.empty()) out.push_back(cur);
-      cur.clear();
-    } else if (c != ' ' && c != '\t') {
-      cur += c;
-    }
-  }
-  return out;
-}
-
 std::vector<std::string> grid_values(const SweepDefinition& def, const std::string& name, const std::string& dflt) {
   const auto it = def.raw.find(name);
   if (it == def.raw.end()) return {dflt};
   const std::string option = "--" + name + (it->second.source.empty() ? "" : " (from " + it->second.source + ")");
   if (name == "engine") {
-    std::vector<std::string> names = split_names(it->second.text);
+    std::vector<std::string> names = parse_name_list(it->second.text);
     if (names.empty()) throw InputError(option + ": the list is empty; give engine names such as exact,reference");
     return names;
   }
   std::vector<std::string> out;
-  for (double x : parse_value_list(it->second.text, option)) out.push_back(number_text(x));
+  for (double x : parse_value_list(it->second.text, option)) out.push_back(exact_decimal(x));
   return out;
 }
 
@@ -134,6 +118,13 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   points.erase(std::unique(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) { return a.key == b.key; }),
                points.end());
   return points;
+}
+
+std::vector<std::size_t> points_to_run(const std::vector<SweepPoint>& points, const std::unordered_set<std::string>& stored) {
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!stored.count(points[i].key)) todo.push_back(i);
+  return todo;
 }
 
 std::vector<SweepPoint> shard_points(const std::vector<SweepPoint>& points, int i, int n) {

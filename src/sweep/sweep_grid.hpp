@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "cli/run_options.hpp"
@@ -43,6 +44,9 @@ double estimate_cost_seconds(const RunSpec& spec);
 // and orders it longest first, ties by key. The hard engine ignores the k list (its k is
 // infinite) and the TC time applies to it alone.
 std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def);
+
+// Indices of the points whose keys are not among `stored`, in the order of `points`.
+std::vector<std::size_t> points_to_run(const std::vector<SweepPoint>& points, const std::unordered_set<std::string>& stored);
 
 // Job-array share i of n (1 <= i <= n): points j (in build order) with j mod n = i - 1, so each
 // shard gets long and short points alike.

@@ -9,9 +9,12 @@
 
 namespace granchain {
 
+namespace {
+// Wall-clock seconds since an arbitrary fixed moment (steady clock).
 double wall_clock_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+}  // namespace
 
 SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink)
     : points_(points), todo_(std::move(todo)), sink_(std::move(sink)) {

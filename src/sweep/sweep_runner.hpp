@@ -48,8 +48,6 @@ class SweepRunner {
   void record(std::size_t index, const RunResult* result, const std::string& error);
 
   SweepProgress progress() const;
-  std::size_t total() const { return todo_.size(); }
-  bool stopped() const { return stop_; }
 
  private:
   void worker(int slot);
@@ -72,8 +70,5 @@ class SweepRunner {
   int threads_ = 0;
   double start_ = 0.0;
 };
-
-// Wall-clock seconds since an arbitrary fixed moment (steady clock).
-double wall_clock_seconds();
 
 }  // namespace granchain
