@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -210,7 +211,7 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "granchain.db")) << args;
   }
-  const CliResult fig = run("reproduce --figure fig7");
+  const CliResult fig = run("reproduce --figure fig11");
   EXPECT_EQ(fig.exit_code, 2);
   EXPECT_NE(fig.err.find("--figure"), std::string::npos) << fig.err;
   EXPECT_EQ(run("reproduce --preset slow").exit_code, 2);
@@ -220,6 +221,31 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
   EXPECT_EQ(run("export --table nope").exit_code, 2);
   EXPECT_EQ(run("merge --into a.db missing.db").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "a.db"));
+}
+
+// The two schematic figures are drawn from simulated trajectories: files and reports exist, and the
+// three-body collapse of fig2 (e = 0.065 < e_c(3)) has intervals shrinking by about q = 0.305 per
+// collision of the pair (1, 2) before the contact time stops them (the report lists the ratios).
+TEST_F(SweepCli, ReproducesTheSchematicFiguresFromTrajectories) {
+  const CliResult r = run("reproduce --figure fig1 --out figs -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("figure: figs/fig1.png"), std::string::npos) << r.out;
+  for (const char* f : {"figs/fig1.png", "figs/fig1.pdf", "figs/fig1-trace.csv", "figs/report-fig1.md"})
+    EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+  const CliResult r2 = run("reproduce --figure fig2 --out figs -q");
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  for (const char* f : {"figs/fig2.png", "figs/fig2.pdf", "figs/fig2-events.csv", "figs/report-fig2.md"})
+    EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+  const std::string md = slurp(dir_ / "figs/report-fig2.md");
+  const auto at = md.find("the ratios of successive t12: ");
+  ASSERT_NE(at, std::string::npos) << md;
+  // The third to fifth ratios: past the launch, before tau_c matters (within 0.03 of q).
+  std::istringstream ratios(md.substr(at + 30));
+  std::vector<double> q;
+  for (double x; q.size() < 5 && ratios >> x; ratios.ignore(2)) q.push_back(x);
+  ASSERT_EQ(q.size(), 5u) << md;
+  for (int n = 2; n < 5; ++n) EXPECT_NEAR(q[n], 0.3053, 0.03) << n;
+  EXPECT_FALSE(fs::exists(dir_ / "figs/report-all.md"));
 }
 
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law

@@ -205,6 +205,38 @@ LineFit fit_alpha_vs_log10_n(const std::vector<DataPoint>& alpha_of_n) {
   return {f.coef[1], f.error[1], f.coef[0], f.error[0], f.chi2, f.dof};
 }
 
+ScalingCollapseFit fit_scaling_collapse(const std::vector<ScalingPoint>& points, double A, double z) {
+  std::vector<DataPoint> pts;  // x = ln X, y = ln(b / N^{5/2}), error = b_error / b
+  for (const auto& p : points) {
+    const double X = (1.0 - p.e) - A / p.N;
+    if (!(X > 0) || !(p.b_error > 0) || !(p.b > z * p.b_error)) continue;
+    pts.push_back({std::log(X), std::log(p.b / std::pow(p.N, 2.5)), p.b_error / p.b});
+  }
+  if (pts.size() < 3) throw std::invalid_argument("fit_scaling_collapse: fewer than 3 points with X > 0 and b > 0");
+  ScalingCollapseFit f;
+  f.A = A;
+  f.points = static_cast<int>(pts.size());
+  const PolynomialFit line = fit_polynomial(pts, 1);
+  f.slope = line.coef[1];
+  f.slope_error = line.error[1];
+  f.prefactor = std::exp(line.coef[0]);
+  f.prefactor_error = f.prefactor * line.error[0];
+  f.chi2 = line.chi2;
+  f.dof = line.dof;
+  double sw = 0, swy = 0;  // slope held at 2: ln C2 is the weighted mean of y - 2x
+  for (const auto& p : pts) {
+    const double w = 1.0 / (p.error * p.error);
+    sw += w;
+    swy += w * (p.y - 2.0 * p.x);
+  }
+  const double lnC = swy / sw;
+  for (const auto& p : pts) f.chi2_C2 += std::pow((p.y - 2.0 * p.x - lnC) / p.error, 2);
+  const int dof2 = f.points - 1;
+  f.C2 = std::exp(lnC);
+  f.C2_error = f.C2 * std::sqrt(std::max(1.0, f.chi2_C2 / dof2) / sw);
+  return f;
+}
+
 Mean mean_exponent(const std::vector<DataPoint>& alphas) {
   if (alphas.empty()) throw std::invalid_argument("mean_exponent: no values");
   const double n = static_cast<double>(alphas.size());

@@ -95,6 +95,25 @@ struct LineFit {
 };
 LineFit fit_alpha_vs_log10_n(const std::vector<DataPoint>& alpha_of_n);
 
+// Fig. logfitbX: near e_c1 the log slope obeys b(e, N) / N^{5/2} = C X^s with X = (1 - e) - A/N,
+// the paper finding s = 2, C = 1.5 at A = 2.6 (Eq. b_e_N). Fitted as ln(b / N^{5/2}) = ln C + s ln X
+// (weighted, the error of ln b being b_error / b) over the points with X > 0 and b above zero by z
+// errors; C2 is the prefactor with s held at 2 (weighted mean of ln(b / N^{5/2} / X^2)). Errors are
+// scaled by sqrt(chi^2/dof) when that exceeds 1.
+struct ScalingPoint {
+  int N = 0;
+  double e = 0, b = 0, b_error = 0;
+};
+struct ScalingCollapseFit {
+  double A = 0;
+  int points = 0;  // used in the fits
+  double slope = 0, slope_error = 0, prefactor = 0, prefactor_error = 0, chi2 = 0;
+  int dof = 0;
+  double C2 = 0, C2_error = 0, chi2_C2 = 0;
+};
+// Throws std::invalid_argument with fewer than 3 usable points.
+ScalingCollapseFit fit_scaling_collapse(const std::vector<ScalingPoint>& points, double A, double z = 2.0);
+
 // The mean of several alphas (Table 1's alpha bar) with its standard error: the larger of the
 // propagated error and the scatter's standard error of the mean.
 struct Mean {

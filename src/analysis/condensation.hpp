@@ -13,15 +13,17 @@ struct ParticleValue {
 
 struct CondensationCheck {
   bool condensed = false;     // an inversion of K_i above its dip, by more than z standard errors
-  int dip = 0;                // 1-based particle of the lowest K_i
-  double rise = 0, rise_error = 0;  // largest K_j - K_dip above the dip, and its standard error
+  int dip = 0;                // 1-based particle i of the most significant rise K_j - K_i (j > i)
+  double rise = 0, rise_error = 0;  // that rise and its standard error
   int sigma_dip = 0;          // 1-based particle of the lowest sigma_i / sigma_0,i (0 without sigma_0)
   double sigma_ratio_min = 0;
 };
 
 // K: K_i for i = 1..N (bottom first). sigma, sigma0 (optional, same length): sigma_i and the
-// elastic column's sigma_0,i. Condensed when K_j - K_dip > z sqrt(err_j^2 + err_dip^2) for some j
-// above the dip particle `dip` = argmin K_i.
+// elastic column's sigma_0,i. Condensed when K_j - K_i > z sqrt(err_j^2 + err_i^2) for a particle
+// i in the lower half of the column (i <= ceil(N/2)) and some j above it: a dip near the floor with
+// a warmer layer above it, whatever the coldest particles at the top do. `dip` is the i, and `rise`
+// the K_j - K_i, of the pair with the largest such ratio.
 CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& K,
                                               const std::vector<ParticleValue>& sigma = {},
                                               const std::vector<double>& sigma0 = {}, double z = 3.0);

@@ -61,7 +61,7 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       } catch (const std::exception&) {
         sigma0.clear();  // no closed form for this column: the sigma ratio is left out
       }
-      out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0)};
+      out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0), K, sigma, sigma0};
     }
   return out;
 }
@@ -116,6 +116,16 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                                       {"K_rise", pc.check.rise}, {"K_rise_err", pc.check.rise_error},
                                       {"sigma_ratio_min", pc.check.sigma_dip ? nlohmann::json(pc.check.sigma_ratio_min) : nlohmann::json(nullptr)},
                                       {"sigma_ratio_min_particle", pc.check.sigma_dip}};
+        nlohmann::json prof = {{"K", nlohmann::json::array()}, {"K_err", nlohmann::json::array()},
+                               {"sigma", nlohmann::json::array()}, {"sigma_err", nlohmann::json::array()},
+                               {"sigma0", pc.sigma0}};
+        for (std::size_t i = 0; i < pc.K.size(); ++i) {
+          prof["K"].push_back(pc.K[i].value);
+          prof["K_err"].push_back(pc.K[i].error);
+          prof["sigma"].push_back(pc.sigma[i].value);
+          prof["sigma_err"].push_back(pc.sigma[i].error);
+        }
+        cj["profile"] = prof;
       }
       curves.push_back(cj);
     }

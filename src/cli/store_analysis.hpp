@@ -18,6 +18,10 @@ namespace granchain {
 struct Condensation {
   double k = 0;  // the largest k stored for the point, whose profiles were used
   analysis::CondensationCheck check;
+  // The profiles it was judged on (Fig. partial_cond), bottom particle first: K_i and sigma_i
+  // (replicas combined), and the elastic column's sigma_0,i (empty when not available).
+  std::vector<analysis::ParticleValue> K, sigma;
+  std::vector<double> sigma0;
 };
 using FamilyKey = std::tuple<std::string, int, double>;  // engine, N, kT0
 

@@ -96,25 +96,9 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; nothing was written\n", e.what());
     return kExitUnphysical;
   }
-  std::string csv = "t";
-  for (int i = 1; i <= spec.run.params.N; ++i) csv += fmt::format(",z{}", i);
-  csv += "\n";
-  for (std::size_t s = 0; s < tr.t.size(); ++s) {
-    csv += fmt::format("{:.17g}", tr.t[s]);
-    for (double z : tr.z[s]) csv += fmt::format(",{:.17g}", z);
-    csv += "\n";
-  }
   try {
-    write_file_atomically(o.output, csv, "--output");
-    if (!o.events_path.empty()) {
-      std::string ev = "t,kind,i,j,speed\n";
-      for (const Event& e : tr.events) {
-        const char* kind = e.kind == EventKind::ContactBegin ? "contact_begin" : e.kind == EventKind::ContactEnd ? "contact_end" : "floor_hit";
-        ev += fmt::format("{:.17g},{},{},{},{:.17g}\n", e.t, kind, e.kind == EventKind::FloorHit ? 0 : e.i + 1,
-                          e.kind == EventKind::FloorHit ? 1 : e.i + 2, e.speed);
-      }
-      write_file_atomically(o.events_path, ev, "--events");
-    }
+    write_file_atomically(o.output, samples_csv(tr), "--output");
+    if (!o.events_path.empty()) write_file_atomically(o.events_path, events_csv(tr), "--events");
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitStoreFailed;

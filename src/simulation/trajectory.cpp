@@ -1,5 +1,7 @@
 #include "simulation/trajectory.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <memory>
 
@@ -56,6 +58,29 @@ Trajectory record_trajectory(const TraceSpec& spec) {
   }
   tr.events = std::move(sink.events);
   return tr;
+}
+
+std::string samples_csv(const Trajectory& tr) {
+  std::string csv = "t";
+  const std::size_t N = tr.z.empty() ? 0 : tr.z.front().size();
+  for (std::size_t i = 1; i <= N; ++i) csv += fmt::format(",z{}", i);
+  csv += "\n";
+  for (std::size_t s = 0; s < tr.t.size(); ++s) {
+    csv += fmt::format("{:.17g}", tr.t[s]);
+    for (double z : tr.z[s]) csv += fmt::format(",{:.17g}", z);
+    csv += "\n";
+  }
+  return csv;
+}
+
+std::string events_csv(const Trajectory& tr) {
+  std::string ev = "t,kind,i,j,speed\n";
+  for (const Event& e : tr.events) {
+    const char* kind = e.kind == EventKind::ContactBegin ? "contact_begin" : e.kind == EventKind::ContactEnd ? "contact_end" : "floor_hit";
+    ev += fmt::format("{:.17g},{},{},{},{:.17g}\n", e.t, kind, e.kind == EventKind::FloorHit ? 0 : e.i + 1,
+                      e.kind == EventKind::FloorHit ? 1 : e.i + 2, e.speed);
+  }
+  return ev;
 }
 
 }  // namespace granchain

@@ -2,6 +2,7 @@
 // Space-time diagrams: the heights z_i(t) of every particle sampled on a regular grid of times in a
 // window, and the events inside it, for the driven column (the same trajectory as `granchain run`
 // with the same seed) or a free-space launch (the same as `granchain collapse`'s launch r).
+#include <string>
 #include <vector>
 
 #include "engines/events.hpp"
@@ -26,5 +27,10 @@ struct Trajectory {
 
 // Throws UnphysicalStateError if the dynamics turns unphysical.
 Trajectory record_trajectory(const TraceSpec& spec);
+
+// As CSV: the samples (t, z1, ..., zN; 17 significant digits) and the events (t, kind, i, j, speed;
+// kind contact_begin, contact_end or floor_hit, particles numbered from 1, the floor as 0).
+std::string samples_csv(const Trajectory& tr);
+std::string events_csv(const Trajectory& tr);
 
 }  // namespace granchain

@@ -17,8 +17,8 @@ const char* source_sql(ExportTable t) {
       return "SELECT r.*, p.point_key, p.sweep_seed, p.replica FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
     case ExportTable::Profiles:
       return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
-             "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err "
-             "FROM profiles pr JOIN runs r ON r.id = pr.run_id";
+             "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err, p.point_key "
+             "FROM profiles pr JOIN runs r ON r.id = pr.run_id LEFT JOIN run_points p ON p.run_id = r.id";
     case ExportTable::Collapse:
       return "SELECT * FROM collapse_runs";
     case ExportTable::Realizations:
@@ -95,6 +95,13 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
     for (std::size_t i = 0; i < sel.engines.size(); ++i) marks += i ? ", ?" : "?";
     where += " AND engine IN (" + marks + ")";
   }
+  if (!sel.point_keys.empty()) {
+    if (sel.table != ExportTable::Runs && sel.table != ExportTable::Profiles)
+      throw StoreError("a selection by point keys applies to the runs and profiles tables only");
+    std::string marks;
+    for (std::size_t i = 0; i < sel.point_keys.size(); ++i) marks += i ? ", ?" : "?";
+    where += " AND point_key IN (" + marks + ")";
+  }
   if (!sel.where.empty()) where += " AND (" + sel.where + ")";
   const std::string sql = std::string("SELECT * FROM (") + source_sql(sel.table) + ") WHERE 1" + where + order_sql(sel.table);
   sqlite3_stmt* probe = nullptr;
@@ -109,6 +116,7 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
   int b = 1;
   for (double x : numbers) rows.bind(b++, x);
   for (const auto& e : sel.engines) rows.bind(b++, e);
+  for (const auto& key : sel.point_keys) rows.bind(b++, key);
 
   std::vector<int> shown;  // every column but the raw JSON provenance
   for (int i = 0; i < rows.columns(); ++i)

@@ -18,6 +18,9 @@ struct ExportSelection {
   std::map<std::string, std::vector<double>> values;
   std::vector<std::string> engines;  // empty: all
   std::string where;                 // an SQL condition on the exported columns, or ""
+  // Runs and profiles only: non-empty keeps just the runs stored under these point keys
+  // (simulation/run_key.hpp), so an analysis sees exactly the points of its own grid.
+  std::vector<std::string> point_keys;
 };
 
 // The selected rows as text. The store is opened read-only. Throws StoreError (a bad --where

@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""The paper's Fig. powerexpo from `granchain reproduce --figure fig9` (fig9.json).
+
+Usage: /usr/bin/python3 plots/alpha_vs_n.py fig9.json PREFIX   -> PREFIX.png and PREFIX.pdf
+The exponent alpha of n_coll ~ k^alpha at e = 0.1, 0.2, 0.3, 0.4 against log10 N (one standard
+error), the mean over the four e, its linear fit (solid) and the paper's 0.18 log10 N - 0.054
+(dashed, Eq. alphafit).
+"""
+import sys
+
+import numpy as np
+
+from plot_common import load, plt, save, usage
+
+
+def main(argv):
+    if usage(__doc__, argv, 2):
+        return 2
+    data = load(argv[1])
+    fig, ax = plt.subplots(figsize=(6.5, 5))
+    markers = {0.1: "o", 0.2: "s", 0.3: "^", 0.4: "v"}
+    logs = []
+    for e, m in markers.items():
+        x, y, err = [], [], []
+        for f in data["families"]:
+            for a in f["alphas"]:
+                if abs(a["e"] - e) < 1e-9:
+                    x.append(np.log10(f["N"]) + (e - 0.25) * 0.02)  # small offsets keep the bars apart
+                    y.append(a["alpha"])
+                    err.append(a["error"])
+        if x:
+            ax.errorbar(x, y, yerr=err, fmt=m, ms=4, capsize=2, mfc="none", label="e = %g" % e)
+    for f in data["families"]:
+        logs.append(np.log10(f["N"]))
+        if f["alpha_bar"]:
+            ax.errorbar(np.log10(f["N"]), f["alpha_bar"]["value"], yerr=f["alpha_bar"]["error"], fmt="D", color="k", ms=4)
+    ax.plot([], [], "D", color="k", label="mean (alpha bar)")
+    if logs:
+        xx = np.linspace(min(logs) - 0.05, max(logs) + 0.05, 20)
+        ax.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label="paper: 0.18 log10 N - 0.054")
+        if data.get("fit"):
+            ax.plot(xx, data["fit"]["slope"] * xx + data["fit"]["intercept"], "k-", lw=0.8,
+                    label="fit: %.3f log10 N %+.3f" % (data["fit"]["slope"], data["fit"]["intercept"]))
+    ax.set_xlabel("log10 N")
+    ax.set_ylabel("alpha")
+    ax.legend(fontsize=7)
+    save(fig, argv[2])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

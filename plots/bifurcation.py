@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""The paper's Fig. bifurcationdiagram from `granchain reproduce --figure fig6` (fig6.json).
+
+Usage: /usr/bin/python3 plots/bifurcation.py fig6.json PREFIX   -> PREFIX.png and PREFIX.pdf
+1 - e_c1 (points with one-standard-error bars) and 1 - e_c2 (the bracket between grid points)
+against 1/N; the fits (1 - e_c) = A/N of this data (solid) and the paper's A = 2.6 and 3.0
+(dashed, dash-dotted); shaded: the e range where the profiles show the partially condensed state.
+"""
+import sys
+
+import numpy as np
+
+from plot_common import load, plt, save, usage
+
+
+def main(argv):
+    if usage(__doc__, argv, 2):
+        return 2
+    data = load(argv[1])
+    fig, ax = plt.subplots(figsize=(6.5, 5))
+    fams = sorted(data["families"], key=lambda f: f["N"])
+    inv = np.array([1.0 / f["N"] for f in fams])
+    for f in fams:
+        x = 1.0 / f["N"]
+        if f["e_c1"]:
+            ax.errorbar(x, 1 - f["e_c1"]["value"], yerr=f["e_c1"]["error"], fmt="o", color="tab:blue", capsize=3, ms=4)
+        if f["e_c2"]:
+            lo, hi = 1 - f["e_c2"]["high"], 1 - f["e_c2"]["low"]
+            ax.errorbar(x, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="s", color="tab:red", capsize=3, ms=4)
+    # The partially condensed region: between the smallest and largest 1 - e flagged, per N.
+    xs, lows, highs = [], [], []
+    for f in fams:
+        if f["condensed_e"]:
+            xs.append(1.0 / f["N"])
+            lows.append(1 - max(f["condensed_e"]))
+            highs.append(1 - min(f["condensed_e"]))
+    if len(xs) >= 2:
+        ax.fill_between(xs, lows, highs, color="0.85", label="partially condensed (K_i inversion)")
+    elif xs:
+        ax.vlines(xs, lows, highs, color="0.7", lw=6, label="partially condensed (K_i inversion)")
+    xx = np.linspace(0, inv.max() * 1.1 if len(inv) else 0.06, 50)
+    ax.plot(xx, 2.6 * xx, "k--", lw=0.8, label="paper: 2.6/N")
+    ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label="paper: 3.0/N")
+    if data.get("A1"):
+        ax.plot(xx, data["A1"]["A"] * xx, color="tab:blue", lw=0.8, label="fit e_c1: A = %.2f" % data["A1"]["A"])
+    if data.get("A2"):
+        ax.plot(xx, data["A2"]["A"] * xx, color="tab:red", lw=0.8, label="fit e_c2: A = %.2f" % data["A2"]["A"])
+    ax.plot([], [], "o", color="tab:blue", label="1 - e_c1")
+    ax.plot([], [], "s", color="tab:red", label="1 - e_c2 (bracket)")
+    ax.set_xlim(0, xx.max())
+    ax.set_ylim(0, None)
+    ax.set_xlabel("1/N")
+    ax.set_ylabel("1 - e")
+    ax.legend(fontsize=7)
+    ax.set_title("power-law collapse (top), logarithmic, uncollapsing (bottom)", fontsize=9)
+    save(fig, argv[2])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,47 @@
+#!/usr/bin/python3
+"""The paper's Fig. partial_cond from `granchain reproduce --figure fig8` (fig8.json).
+
+Usage: /usr/bin/python3 plots/partial_cond.py fig8.json PREFIX   -> PREFIX.png and PREFIX.pdf
+(a) sigma_i / sigma_0,i (sigma_0,i of the exact elastic column) and (b) K_i against the particle
+index i, one curve per e; error bars one standard error; dashed: K_i = k_B T0 / 2 of the elastic
+column; log scales. Curves flagged partially condensed (K_i inversion) are drawn solid, the others dotted.
+"""
+import sys
+
+import numpy as np
+
+from plot_common import load, plt, save, usage
+
+
+def main(argv):
+    if usage(__doc__, argv, 2):
+        return 2
+    data = load(argv[1])
+    curves = sorted(data["curves"], key=lambda c: c["e"])
+    fig, axes = plt.subplots(2, 1, figsize=(7, 8), sharex=True)
+    for j, c in enumerate(curves):
+        p = c["profile"]
+        i = np.arange(1, len(p["K"]) + 1)
+        color = plt.cm.coolwarm(j / max(1, len(curves) - 1))
+        style = "-" if c["condensed"] else ":"
+        label = "e = %g%s" % (c["e"], " (inversion)" if c["condensed"] else "")
+        if p["sigma0"]:
+            s0 = np.array(p["sigma0"])
+            axes[0].errorbar(i, np.array(p["sigma"]) / s0, yerr=np.array(p["sigma_err"]) / s0, fmt="o" + style, ms=2.5,
+                             lw=0.9, capsize=1.5, color=color, label=label)
+        axes[1].errorbar(i, p["K"], yerr=p["K_err"], fmt="o" + style, ms=2.5, lw=0.9, capsize=1.5, color=color, label=label)
+    axes[1].axhline(0.5, color="k", ls="--", lw=0.7)
+    for ax in axes:
+        ax.set_yscale("log")
+    axes[0].set_ylabel("sigma_i / sigma_0,i")
+    axes[1].set_ylabel("K_i")
+    axes[1].set_xlabel("particle i (1 = bottom)")
+    axes[0].set_title("(a) N = %d, k = %s" % (data["N"], data["k"]), fontsize=9)
+    axes[1].set_title("(b)", fontsize=9)
+    axes[0].legend(fontsize=6, ncol=2)
+    save(fig, argv[2])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

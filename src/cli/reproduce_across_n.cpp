@@ -1,0 +1,237 @@
+// `granchain reproduce` across N and T0: Figs. bifurcationdiagram (fig6), logfitbX (fig7) and
+// powerexpo (fig9) from one sweep over N = 20..150 at k_B T0 = 1, and Table 1 (N = 25, 50 at
+// k_B T0 = 1, 2, 4, 10).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "analysis/collapse_regimes.hpp"
+#include "cli/reproduce_support.hpp"
+#include "cli/subcommand.hpp"
+
+namespace granchain {
+
+namespace {
+
+const std::vector<int> kAcrossN = {20, 25, 30, 40, 50, 100, 150};
+// The critical region as N(1 - e): the paper finds 1 - e_c1 = 2.6/N and 1 - e_c2 = 3.0/N (Eq. e-fit);
+// the grid reaches from deep in the power-law regime (5/N) to well inside the uncollapsing one (1.2/N).
+const std::vector<double> kCriticalC = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2};
+// Table 1's and Fig. powerexpo's power-law exponents are measured at these e.
+const char* kPowerLawE = "0.1,0.2,0.3,0.4";
+
+std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<int>& Ns, const std::string& T0) {
+  std::vector<GridBlock> blocks;
+  for (int N : Ns)
+    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, kCriticalC) + "," + kPowerLawE, preset_k(o), preset_T(o, N), T0});
+  return blocks;
+}
+
+struct SweepAnalysis {
+  std::vector<SweepPoint> points;
+  StoreAnalysis a;
+  int exit_code = kExitOk;
+  std::string grid_text;  // for the reports
+};
+
+SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlock>& blocks, const std::string& label) {
+  SweepAnalysis s;
+  s.points = grid_points(blocks);
+  s.exit_code = run_missing_points(s.points, o, label).empty() ? kExitOk : kExitUnphysical;
+  s.a = analyze_points(o.db, s.points, preset_k_min(o));
+  s.grid_text = fmt::format("k = {} (fits over k >= {:g}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
+                            "e = 1 - c/N for c = 5, 4, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2 and e = {}; {} runs",
+                            preset_k(o), preset_k_min(o), preset_T(o, 20), preset_T(o, 50), kPowerLawE, s.a.runs);
+  return s;
+}
+
+// The across-N sweep of Figs. 6, 7 and 9 (k_B T0 = 1).
+SweepAnalysis across_n(const ReproduceFlags& o) { return run_and_analyze(o, across_blocks(o, kAcrossN, "1"), o.figure + " (N = 20..150)"); }
+
+std::string critical_text(const analysis::CriticalValue& c, int digits = 4) {
+  return c.found ? plus_minus(c.value, c.error, digits) : "not found";
+}
+std::string bracket_text(const analysis::CriticalValue& c) {
+  return c.found ? fmt::format("{:.4f} – {:.4f}", c.low, c.high) : "not found";
+}
+
+// The e of the grid at which the profiles show the partially condensed state (K_i inversion),
+// within the critical region (c <= 5).
+std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f) {
+  std::vector<double> out;
+  const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+  if (fc == a.condensation.end()) return out;
+  for (const auto& [e, c] : fc->second)
+    if (c.check.condensed && f.N * (1.0 - e) <= 5.0 + 1e-9) out.push_back(e);
+  return out;
+}
+
+const analysis::AcrossN* across_at(const StoreAnalysis& a, double kT0) {
+  for (const auto& x : a.report.across)
+    if (x.engine == "exact" && x.kT0 == kT0) return &x;
+  return nullptr;
+}
+
+nlohmann::json critical_json(const analysis::CriticalValue& c) {
+  if (!c.found) return nullptr;
+  return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}};
+}
+
+}  // namespace
+
+// Fig. bifurcationdiagram: e_c1 and e_c2 against 1/N with the fits (1 - e_c) = A/N, and the e range
+// of the partially condensed state.
+FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
+  const SweepAnalysis s = across_n(o);
+  const analysis::AcrossN* x = across_at(s.a, 1.0);
+  nlohmann::json plot = {{"families", nlohmann::json::array()}, {"A1", nullptr}, {"A2", nullptr}};
+  std::string table = "| N | e_c1 measured | paper | e_c2 measured | paper | partially condensed at e |\n|---|---|---|---|---|---|\n";
+  for (const auto& f : s.a.report.families) {
+    const std::vector<double> cond = condensed_es(s.a, f);
+    plot["families"].push_back({{"N", f.N}, {"e_c1", critical_json(f.e_c1)}, {"e_c2", critical_json(f.e_c2)}, {"condensed_e", cond}});
+    const std::string paper1 = f.N == 25 ? "0.894" : f.N == 50 ? "0.944" : fmt::format("{:.3f} (fit)", 1 - 2.6 / f.N);
+    const std::string paper2 = f.N == 25 ? "0.878 – 0.884" : f.N == 50 ? "0.936 – 0.942" : fmt::format("{:.3f} (fit)", 1 - 3.0 / f.N);
+    table += fmt::format("| {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), paper1, bracket_text(f.e_c2), paper2,
+                         cond.empty() ? "none" : fmt::format("{:g} – {:g} ({} of the grid)", cond.front(), cond.back(), cond.size()));
+  }
+  std::string fits;
+  if (x && x->has_A1) {
+    plot["A1"] = {{"A", x->A1.A}, {"error", x->A1.A_error}};
+    fits += fmt::format("| 1 − e_c1 = A/N | A = {} (χ² = {:.1f}, {} dof) | A = 2.6 |\n", plus_minus(x->A1.A, x->A1.A_error, 2), x->A1.chi2, x->A1.dof);
+  }
+  if (x && x->has_A2) {
+    plot["A2"] = {{"A", x->A2.A}, {"error", x->A2.A_error}};
+    fits += fmt::format("| 1 − e_c2 = A/N | A = {} (χ² = {:.1f}, {} dof) | A = 3.0 |\n", plus_minus(x->A2.A, x->A2.A_error, 2), x->A2.chi2, x->A2.dof);
+  }
+  const std::string prefix = output_path(o, "fig6");
+  write_output(prefix + ".json", plot.dump(1) + "\n");
+  draw("bifurcation.py", {prefix + ".json", prefix});
+  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  out.markdown = fmt::format("Command: `granchain reproduce --figure fig6 --preset {}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
+                             "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
+                             "its fit lines (Eq. e-fit) stand in.\n\n",
+                             o.preset, s.grid_text);
+  out.markdown += table + "\n| fit | measured | paper |\n|---|---|---|\n" + (fits.empty() ? "| (1 − e_c) = A/N | fewer than two N with e_c found | |\n" : fits);
+  out.markdown += "\nThe partially condensed state is flagged where K_i rises above its dip near the floor by more than 3 standard "
+                  "errors (docs/analysis.md), in the profiles at the largest k; the paper's shaded region has its upper e near e_c1.\n";
+  return out;
+}
+
+// Fig. logfitbX: b / N^{5/2} against X = (1 - e) - A/N over the logarithmically collapsing points, with
+// A = 2.6 (the paper's) and with the A fitted to this sweep's e_c1; b / N^{1/2} against N (1 - e).
+FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
+  const SweepAnalysis s = across_n(o);
+  const analysis::AcrossN* x = across_at(s.a, 1.0);
+  std::vector<analysis::ScalingPoint> pts;
+  nlohmann::json plot = {{"points", nlohmann::json::array()}, {"fits", nlohmann::json::array()}};
+  for (const auto& f : s.a.report.families)
+    for (const auto& c : f.curves)
+      if (c.classified && c.c.regime == analysis::Regime::Logarithmic) {
+        pts.push_back({f.N, c.e, c.c.log_fit.b, c.c.log_fit.b_error});
+        plot["points"].push_back({{"N", f.N}, {"e", c.e}, {"b", c.c.log_fit.b}, {"b_err", c.c.log_fit.b_error}});
+      }
+  std::vector<std::pair<std::string, double>> As = {{"paper's A = 2.6", 2.6}};
+  if (x && x->has_A1) As.push_back({fmt::format("this sweep's A = {:.2f}", x->A1.A), x->A1.A});
+  std::string table = "| X = (1 − e) − A/N with | points | free fit: slope | prefactor C | C at slope 2 | paper |\n|---|---|---|---|---|---|\n";
+  for (const auto& [name, A] : As) {
+    try {
+      const analysis::ScalingCollapseFit fit = analysis::fit_scaling_collapse(pts, A);
+      plot["fits"].push_back({{"name", name}, {"A", A}, {"slope", fit.slope}, {"prefactor", fit.prefactor}, {"C2", fit.C2}});
+      table += fmt::format("| {} | {} | {} | {} | {} | slope 2, C = 1.5 |\n", name, fit.points, plus_minus(fit.slope, fit.slope_error, 2),
+                           plus_minus(fit.prefactor, fit.prefactor_error, 2), plus_minus(fit.C2, fit.C2_error, 2));
+    } catch (const std::invalid_argument&) {
+      plot["fits"].push_back({{"name", name}, {"A", A}});
+      table += fmt::format("| {} | fewer than 3 with X > 0 | - | - | - | slope 2, C = 1.5 |\n", name);
+    }
+  }
+  const std::string prefix = output_path(o, "fig7");
+  write_output(prefix + ".json", plot.dump(1) + "\n");
+  draw("scaling_collapse.py", {prefix + ".json", prefix});
+  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  out.markdown = fmt::format("Command: `granchain reproduce --figure fig7 --preset {}`. The sweep of fig6; {} points classified "
+                             "logarithmically collapsing, their slopes b per decade of k. Figure: `fig7.png` (and .pdf): (a) b/N^(5/2) "
+                             "against X with A = 2.6, (b) with this sweep's A, (c) b/N^(1/2) against N(1 − e).\n\n",
+                             o.preset, pts.size());
+  out.markdown += table + "\nThe paper (Eq. b_e_N): b = 1.5 N^(5/2) ((1 − e) − 2.6/N)^2 over its logarithmic ranges "
+                          "(0.835 ≤ e ≤ 0.900 for N = 20 … 0.972 ≤ e ≤ 0.979 for N = 150).\n";
+  return out;
+}
+
+// Fig. powerexpo: alpha at e = 0.1..0.4 against log10 N, and the fit alpha = p log10 N + q of the
+// mean exponents (Eq. alphafit).
+FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
+  const SweepAnalysis s = across_n(o);
+  const analysis::AcrossN* x = across_at(s.a, 1.0);
+  nlohmann::json plot = {{"families", nlohmann::json::array()}, {"fit", nullptr}};
+  std::string table = "| N | α(0.1) | α(0.2) | α(0.3) | α(0.4) | ᾱ | paper fit 0.18 log10 N − 0.054 |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& f : s.a.report.families) {
+    nlohmann::json al = nlohmann::json::array();
+    std::string cells;
+    for (double e : {0.1, 0.2, 0.3, 0.4}) {
+      std::string cell = "-";
+      for (const auto& p : f.alphas)
+        if (std::abs(p.x - e) < 1e-9) {
+          al.push_back({{"e", e}, {"alpha", p.y}, {"error", p.error}});
+          cell = plus_minus(p.y, p.error);
+        }
+      cells += cell + " | ";
+    }
+    plot["families"].push_back({{"N", f.N}, {"alphas", al},
+                                {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
+                                                              : nlohmann::json(nullptr)}});
+    table += fmt::format("| {} | {}{} | {:.3f} |\n", f.N, cells, f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-",
+                         0.18 * std::log10(f.N) - 0.054);
+  }
+  std::string fit = "fewer than three N with α measured";
+  if (x && x->has_alpha_fit) {
+    plot["fit"] = {{"slope", x->alpha_fit.slope}, {"intercept", x->alpha_fit.intercept}};
+    fit = fmt::format("ᾱ = ({}) log10 N + ({}), χ² = {:.1f} for {} dof", plus_minus(x->alpha_fit.slope, x->alpha_fit.slope_error),
+                      plus_minus(x->alpha_fit.intercept, x->alpha_fit.intercept_error), x->alpha_fit.chi2, x->alpha_fit.dof);
+  }
+  const std::string prefix = output_path(o, "fig9");
+  write_output(prefix + ".json", plot.dump(1) + "\n");
+  draw("alpha_vs_n.py", {prefix + ".json", prefix});
+  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
+                             "n_coll = c k^α fitted over k >= {:g}. Figure: `fig9.png` (and .pdf).\n\n",
+                             o.preset, preset_k_min(o));
+  out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
+  return out;
+}
+
+// Table 1: e_c1, e_c2 and alpha bar for N = 25 and 50 at k_B T0 = 1, 2, 4, 10.
+FigureOutcome reproduce_table1(const ReproduceFlags& o) {
+  std::vector<GridBlock> blocks = across_blocks(o, {25, 50}, "1,2,4,10");
+  const SweepAnalysis s = run_and_analyze(o, blocks, "table1 (N = 25, 50; k_B T0 = 1, 2, 4, 10)");
+  struct PaperRow {
+    int N;
+    double T0;
+    const char *ec1, *ec2, *alpha;
+  };
+  const std::vector<PaperRow> paper = {{25, 1, "0.894", "0.878 – 0.884", "0.20"}, {25, 2, "0.892", "0.874 – 0.880", "0.20"},
+                                       {25, 4, "0.892", "0.872 – 0.880", "0.20"}, {25, 10, "0.890", "0.872 – 0.878", "0.19"},
+                                       {50, 1, "0.944", "0.936 – 0.942", "0.25"}, {50, 2, "0.944", "0.938 – 0.942", "0.25"},
+                                       {50, 4, "0.944", "0.938 – 0.940", "0.24"}, {50, 10, "0.944", "0.934 – 0.944", "0.24"}};
+  std::string table = "| N | k_B T0 | e_c1 | paper | e_c2 | paper | ᾱ | paper |\n|---|---|---|---|---|---|---|---|\n";
+  std::string csv = "N,kT0,e_c1,e_c1_err,e_c2_low,e_c2_high,alpha_bar,alpha_bar_err,paper_e_c1,paper_e_c2,paper_alpha_bar\n";
+  for (const PaperRow& row : paper)
+    for (const auto& f : s.a.report.families) {
+      if (f.N != row.N || f.kT0 != row.T0) continue;
+      table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), row.ec1, bracket_text(f.e_c2),
+                           row.ec2, f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-", row.alpha);
+      auto num = [](bool has, double v) { return has ? fmt::format("{}", v) : std::string(); };
+      csv += fmt::format("{},{:g},{},{},{},{},{},{},{},\"{}\",{}\n", f.N, f.kT0, num(f.e_c1.found, f.e_c1.value), num(f.e_c1.found, f.e_c1.error),
+                         num(f.e_c2.found, f.e_c2.low), num(f.e_c2.found, f.e_c2.high), num(f.has_alpha_bar, f.alpha_bar.value),
+                         num(f.has_alpha_bar, f.alpha_bar.error), row.ec1, row.ec2, row.alpha);
+    }
+  write_output(output_path(o, "table1.csv"), csv);
+  FigureOutcome out{s.exit_code, "", output_path(o, "table1.csv")};
+  out.markdown = fmt::format("Command: `granchain reproduce --figure table1 --preset {}`. N = 25, 50 at k_B T0 = 1, 2, 4, 10; {}. "
+                             "Also `table1.csv`.\n\n",
+                             o.preset, s.grid_text);
+  out.markdown += table + "\nThe paper finds e_c1, e_c2 and ᾱ independent of T0 for 1 ≤ k_B T0 ≤ 10.\n";
+  return out;
+}
+
+}  // namespace granchain

@@ -1,0 +1,89 @@
+#include "cli/reproduce_support.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#include "cli/output_file.hpp"
+#include "cli/plot_script.hpp"
+#include "cli/sweep_progress.hpp"
+#include "store/results_store.hpp"
+#include "sweep/sweep_runner.hpp"
+
+namespace granchain {
+
+std::string preset_k(const ReproduceFlags& o) { return o.paper() ? "1e5:1e10:x10" : "1e4:1e8:x10"; }
+double preset_k_min(const ReproduceFlags& o) { return o.paper() ? 1e6 : 1e5; }
+std::string preset_k_max(const ReproduceFlags& o) { return o.paper() ? "1e10" : "1e8"; }
+std::string preset_T(const ReproduceFlags& o, int N) {
+  if (o.paper()) return N < 50 ? "1e4" : "1e3";
+  return N < 50 ? "1000" : "100";
+}
+
+std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
+  std::vector<SweepPoint> all;
+  std::set<std::string> seen;
+  for (const GridBlock& b : blocks) {
+    SweepDefinition def;
+    def.raw["N"] = {b.N, ""};
+    def.raw["e"] = {b.e, ""};
+    def.raw["k"] = {b.k, ""};
+    def.raw["T"] = {b.T, ""};
+    def.raw["T0"] = {b.T0, ""};
+    for (SweepPoint& p : build_sweep_points(def))
+      if (seen.insert(p.key).second) all.push_back(std::move(p));
+  }
+  std::stable_sort(all.begin(), all.end(), [](const SweepPoint& a, const SweepPoint& b) {
+    return a.cost != b.cost ? a.cost > b.cost : a.key < b.key;
+  });
+  return all;
+}
+
+std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label) {
+  std::vector<std::string> failures;
+  ResultsStore store(o.db);
+  const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
+  if (!o.quiet)
+    fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", label, o.preset, points.size(),
+               points.size() - todo.size(), o.db, todo.size(), o.threads);
+  if (todo.empty()) return failures;
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+    if (r) store.insert_sweep_point(*r, p.key, 1, p.replica);
+    else failures.push_back(p.key + ": " + error);
+  });
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  SweepProgressCallback cb;
+  if (!o.quiet) cb = SweepProgressPrinter(tty, "reproduce " + label);
+  runner.run(o.threads, cb, tty ? 0.5 : 30.0);
+  for (const auto& f : failures) fmt::print(stderr, "granchain: error: run turned unphysical, not stored: {}\n", f);
+  return failures;
+}
+
+StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min) {
+  ExportSelection sel;
+  for (const SweepPoint& p : points) sel.point_keys.push_back(p.key);
+  return analyze_store(db, sel, k_min);
+}
+
+std::string output_path(const ReproduceFlags& o, const std::string& name) {
+  return (std::filesystem::path(o.out) / name).string();
+}
+
+void write_output(const std::string& path, const std::string& text) { write_file_atomically(path, text, "--out"); }
+
+void draw(const std::string& script, const std::vector<std::string>& args) {
+  const std::string problem = run_plot_script(script, args);
+  if (!problem.empty()) throw std::runtime_error(problem);
+}
+
+std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c) {
+  std::string out;
+  for (double ci : c) out += fmt::format("{}{:.12g}", out.empty() ? "" : ",", 1.0 - ci / N);
+  return out;
+}
+
+}  // namespace granchain

@@ -1,0 +1,74 @@
+#pragma once
+// What the figures of `granchain reproduce` share: the flags, the driven-column grids a figure
+// needs (run into the results store, reusing what it holds), the analysis of exactly those points,
+// and the files a figure writes. One reproduce_*.cpp per group of figures implements them.
+#include <string>
+#include <vector>
+
+#include "cli/store_analysis.hpp"
+#include "sweep/sweep_grid.hpp"
+
+namespace granchain {
+
+struct ReproduceFlags {
+  std::string figure = "fig5", preset = "quick", db = "reproduce.db", out = "reproduce";
+  int threads = 0;  // resolved to all cores before a figure runs
+  bool quiet = false;
+  bool paper() const { return preset == "paper"; }
+};
+
+// What one figure produced: its exit code (kExitOk, or kExitUnphysical when points failed and
+// were left out) and its section of the Markdown report.
+struct FigureOutcome {
+  int exit_code = 0;
+  std::string markdown;
+  std::string drawn;  // the figure files, for the command's output ("out/fig6.png (and .pdf)")
+};
+
+// One block of a figure's driven-column grid, as texts of `granchain sweep` (lists, ranges).
+struct GridBlock {
+  std::string N, e, k, T, T0 = "1";
+};
+
+// The presets' k grids and times. quick: k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and
+// 100 for N >= 50; paper: k = 1e5..1e10, fits over k >= 1e6, T = 1e4 and 1e3 (the paper's).
+std::string preset_k(const ReproduceFlags& o);
+double preset_k_min(const ReproduceFlags& o);
+std::string preset_k_max(const ReproduceFlags& o);  // the largest k, for profiles
+std::string preset_T(const ReproduceFlags& o, int N);
+
+// The points of all blocks, each key once, longest first. Throws InputError on a bad grid.
+std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
+
+// Runs the points the store does not hold yet on o.threads threads (progress on stderr unless
+// quiet) and stores each as it finishes; returns one line per point that turned unphysical (not
+// stored). Throws StoreError.
+std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label);
+
+// The analysis (`granchain analyze`) of exactly these points as stored, fits over k >= k_min.
+StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min);
+
+// The path of an output named `name` in --out.
+std::string output_path(const ReproduceFlags& o, const std::string& name);
+// Writes a whole output file (atomically); throws std::runtime_error naming it.
+void write_output(const std::string& path, const std::string& text);
+// Runs plots/<script> with these arguments; throws std::runtime_error saying what went wrong.
+void draw(const std::string& script, const std::vector<std::string>& args);
+
+// The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
+std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c);
+
+// The figures. Each runs what it needs, draws into --out and returns its report section; throws
+// StoreError (store), UnphysicalStateError (a trajectory that must not fail) or std::runtime_error
+// (an output or plot that could not be written).
+FigureOutcome reproduce_model_sketch(const ReproduceFlags& o);        // fig1 (1dmodel)
+FigureOutcome reproduce_three_body(const ReproduceFlags& o);          // fig2 (threebodycollapse)
+FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o);        // fig3, fig4 (N = 3..6), fig5 (N = 25)
+FigureOutcome reproduce_bifurcation(const ReproduceFlags& o);         // fig6 (bifurcationdiagram)
+FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o);    // fig7 (logfitbX)
+FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o);  // fig8 (partial_cond)
+FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o);          // fig9 (powerexpo)
+FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o);   // fig10 (ntot)
+FigureOutcome reproduce_table1(const ReproduceFlags& o);              // table1
+
+}  // namespace granchain
