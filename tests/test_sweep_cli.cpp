@@ -248,6 +248,25 @@ TEST_F(SweepCli, ReproducesTheSchematicFiguresFromTrajectories) {
   EXPECT_FALSE(fs::exists(dir_ / "figs/report-all.md"));
 }
 
+// --print-sweeps prints the figure's grid as `granchain sweep` commands; run as printed, they fill
+// a store from which the figure reuses every point (the keys agree).
+TEST_F(SweepCli, PrintedSweepsFillTheStoreTheFigureReuses) {
+  const CliResult p = run("reproduce --figure fig4 --print-sweeps");
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const std::string line = p.out.substr(0, p.out.find('\n'));
+  ASSERT_EQ(line, "granchain sweep --N 3,4,5,6 --e 0.05:1.0:0.05 --k 1e4:1e8:x10 --T 1000 --T0 1") << p.out;
+  EXPECT_NE(p.out.find("# 400 distinct points"), std::string::npos) << p.out;
+  // Run as printed (400 runs, about 10 s), then the figure finds every point stored.
+  const CliResult sw = run(line.substr(std::string("granchain ").size()) + " --db s.db -q");
+  ASSERT_EQ(sw.exit_code, 0) << sw.err;
+  const CliResult fig = run("reproduce --figure fig4 --db s.db --out figs");
+  ASSERT_EQ(fig.exit_code, 0) << fig.err;
+  EXPECT_NE(fig.err.find("400 runs, 400 already in s.db, 0 to run"), std::string::npos) << fig.err;
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), 400);
+  EXPECT_TRUE(fs::exists(dir_ / "figs/fig4_N6_T01_exact.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "figs/report-fig4.md"));
+}
+
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law
 // (e = 0.3), a logarithm (e = 0.86) and a converging curve (e = 0.95); it names each regime and
 // finds e_c2 between 0.3 and 0.86.

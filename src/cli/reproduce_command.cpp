@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <set>
 #include <thread>
 
 #include "cli/input_error.hpp"
@@ -24,21 +25,22 @@ struct FigureEntry {
   const char* name;   // --figure
   const char* label;  // the paper's LaTeX label
   FigureOutcome (*run)(const ReproduceFlags&);
+  std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
 };
 
 const std::vector<FigureEntry>& figures() {
   static const std::vector<FigureEntry> list = {
-      {"fig1", "1dmodel", reproduce_model_sketch},
-      {"fig2", "threebodycollapse", reproduce_three_body},
-      {"fig3", "cflogk", reproduce_ncoll_figure},
-      {"fig4", "cfe", reproduce_ncoll_figure},
-      {"fig5", "cfreqlogN25", reproduce_ncoll_figure},
-      {"fig6", "bifurcationdiagram", reproduce_bifurcation},
-      {"fig7", "logfitbX", reproduce_scaling_collapse},
-      {"fig8", "partial_cond", reproduce_partial_condensation},
-      {"fig9", "powerexpo", reproduce_alpha_vs_n},
-      {"fig10", "ntot", reproduce_free_space_counts},
-      {"table1", "table1", reproduce_table1},
+      {"fig1", "1dmodel", reproduce_model_sketch, nullptr},
+      {"fig2", "threebodycollapse", reproduce_three_body, nullptr},
+      {"fig3", "cflogk", reproduce_ncoll_figure, ncoll_grid},
+      {"fig4", "cfe", reproduce_ncoll_figure, ncoll_grid},
+      {"fig5", "cfreqlogN25", reproduce_ncoll_figure, ncoll_grid},
+      {"fig6", "bifurcationdiagram", reproduce_bifurcation, across_n_grid},
+      {"fig7", "logfitbX", reproduce_scaling_collapse, across_n_grid},
+      {"fig8", "partial_cond", reproduce_partial_condensation, partial_condensation_grid},
+      {"fig9", "powerexpo", reproduce_alpha_vs_n, across_n_grid},
+      {"fig10", "ntot", reproduce_free_space_counts, nullptr},
+      {"table1", "table1", reproduce_table1, table1_grid},
   };
   return list;
 }
@@ -69,8 +71,9 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  fig10 ntot               free-space n_tot(k), N = 3 and N = 25\n"
       "  table1                   e_c1, e_c2, alpha bar for N = 25, 50 at k_B T0 = 1, 2, 4, 10\n"
       "  all                      every one of them in this order, and report-all.md\n"
-      "Presets: quick (k = 1e4..1e8, T = 1000 for N < 50 and 100 for N >= 50; each figure under 30 minutes on\n"
-      "two cores), paper (k = 1e5..1e10, T = 1e4 and 1e3: the paper's grids, CPU-weeks for fig6, fig9, table1).\n"
+      "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000; fig6, fig7, fig9, table1 T = 500 for N < 50 and\n"
+      "50 for N >= 50; each figure under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"
+      "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; CPU-days for fig6, fig9, table1: use a cluster).\n"
       "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.");
   sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1 or all; default fig5");
   sub_->add_option("--preset", impl_->preset, "quick (default) or paper");
@@ -78,6 +81,9 @@ Subcommand add_reproduce_command(CLI::App& app) {
   sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
   sub_->add_option("--threads", impl_->threads, "threads; default all cores");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
+  sub_->add_flag("--print-sweeps", impl_->print_sweeps,
+                 "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
+                 "into one store; reproduce --db STORE then reuses every point) and run nothing");
   return {sub_, [impl_] { return execute_reproduce(impl_); }};
 }
 
@@ -103,6 +109,27 @@ FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
   }
 }
 
+// The sweeps behind the chosen figures as `granchain sweep` commands, each grid block once.
+int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& flags) {
+  std::set<std::string> seen;
+  std::vector<GridBlock> blocks;
+  ReproduceFlags o = flags;
+  for (const FigureEntry* f : chosen) {
+    if (!f->grid) continue;
+    o.figure = f->name;
+    for (const GridBlock& b : f->grid(o)) {
+      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}", b.N, b.e, b.k, b.T, b.T0);
+      if (!seen.insert(line).second) continue;
+      blocks.push_back(b);
+      fmt::print("{}\n", line);
+    }
+  }
+  fmt::print("# {} distinct points; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
+             "granchain reproduce --figure {} --preset {} --db STORE\n",
+             blocks.empty() ? 0 : grid_points(blocks).size(), flags.figure, flags.preset);
+  return kExitOk;
+}
+
 int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
   ReproduceFlags o = *impl_;
   std::vector<const FigureEntry*> chosen;
@@ -125,6 +152,7 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
+  if (o.print_sweeps) return print_sweeps(chosen, o);
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   int code = kExitOk;

@@ -43,12 +43,19 @@ std::string small_n_table(const StoreAnalysis& a) {
 
 }  // namespace
 
+std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o) {
+  if (o.figure == "fig5") return {{"25", kFig5E, preset_k(o), preset_T(o, 25)}};
+  return {{"3,4,5,6", "0.05:1.0:0.05", preset_k(o), preset_T(o, 3)}};
+}
+std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o) {
+  return {{"25", "0.82:0.92:0.01,1.0", preset_k_max(o), preset_T(o, 25)}};
+}
+
 // Figs. cflogk, cfe (fig3, fig4: one sweep over N = 3..6, e = 0.05..1.0 by 0.05) and cfreqlogN25
 // (fig5: N = 25 on the paper's e grids), at the preset's k and T.
 FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   const bool fig5 = o.figure == "fig5";
-  const GridBlock grid = fig5 ? GridBlock{"25", kFig5E, preset_k(o), preset_T(o, 25)}
-                              : GridBlock{"3,4,5,6", "0.05:1.0:0.05", preset_k(o), preset_T(o, 3)};
+  const GridBlock grid = ncoll_grid(o).front();
   const std::vector<SweepPoint> points = grid_points({grid});
   const auto failures = run_missing_points(points, o, o.figure);
   StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));
@@ -82,7 +89,7 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
 // the elastic e = 1 as a check of sigma_0,i, which comes from the exact elastic column), at the
 // preset's largest k. The runs at e <= 0.90 are fig5's own points at that k.
 FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
-  const GridBlock grid{"25", "0.82:0.92:0.01,1.0", preset_k_max(o), preset_T(o, 25)};
+  const GridBlock grid = partial_condensation_grid(o).front();
   const std::vector<SweepPoint> points = grid_points({grid});
   const auto failures = run_missing_points(points, o, o.figure);
   const StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));

@@ -14,6 +14,7 @@ struct ReproduceFlags {
   std::string figure = "fig5", preset = "quick", db = "reproduce.db", out = "reproduce";
   int threads = 0;  // resolved to all cores before a figure runs
   bool quiet = false;
+  bool print_sweeps = false;  // print the equivalent `granchain sweep` commands and run nothing
   bool paper() const { return preset == "paper"; }
 };
 
@@ -57,6 +58,12 @@ void draw(const std::string& script, const std::vector<std::string>& args);
 
 // The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c);
+
+// The driven-column grids of the figures that need sweeps (o.figure picks fig3/fig4 or fig5).
+std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o);                 // fig3, fig4, fig5
+std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o);  // fig8
+std::vector<GridBlock> across_n_grid(const ReproduceFlags& o);              // fig6, fig7, fig9
+std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // table1
 
 // The figures. Each runs what it needs, draws into --out and returns its report section; throws
 // StoreError (store), UnphysicalStateError (a trajectory that must not fail) or std::runtime_error
