@@ -114,10 +114,8 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
     plot["A2"] = {{"A", x->A2.A}, {"error", x->A2.A_error}};
     fits += fmt::format("| 1 − e_c2 = A/N | A = {} (χ² = {:.1f}, {} dof) | A = 3.0 |\n", plus_minus(x->A2.A, x->A2.A_error, 2), x->A2.chi2, x->A2.dof);
   }
-  const std::string prefix = output_path(o, "fig6");
-  write_output(prefix + ".json", plot.dump(1) + "\n");
-  draw("bifurcation.py", {prefix + ".json", prefix});
-  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
+  FigureOutcome out{s.exit_code, "", drawn};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig6 --preset {}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
                              "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
                              "its fit lines (Eq. e-fit) stand in.\n\n",
@@ -155,10 +153,8 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
       table += fmt::format("| {} | fewer than 3 with X > 0 | - | - | - | slope 2, C = 1.5 |\n", name);
     }
   }
-  const std::string prefix = output_path(o, "fig7");
-  write_output(prefix + ".json", plot.dump(1) + "\n");
-  draw("scaling_collapse.py", {prefix + ".json", prefix});
-  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  const std::string drawn = draw_figure(o, "fig7", plot, "scaling_collapse.py");
+  FigureOutcome out{s.exit_code, "", drawn};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig7 --preset {}`. The sweep of fig6; {} points classified "
                              "logarithmically collapsing, their slopes b per decade of k. Figure: `fig7.png` (and .pdf): (a) b/N^(5/2) "
                              "against X with A = 2.6, (b) with this sweep's A, (c) b/N^(1/2) against N(1 − e).\n\n",
@@ -199,10 +195,8 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
     fit = fmt::format("ᾱ = ({}) log10 N + ({}), χ² = {:.1f} for {} dof", plus_minus(x->alpha_fit.slope, x->alpha_fit.slope_error),
                       plus_minus(x->alpha_fit.intercept, x->alpha_fit.intercept_error), x->alpha_fit.chi2, x->alpha_fit.dof);
   }
-  const std::string prefix = output_path(o, "fig9");
-  write_output(prefix + ".json", plot.dump(1) + "\n");
-  draw("alpha_vs_n.py", {prefix + ".json", prefix});
-  FigureOutcome out{s.exit_code, "", prefix + ".png (and .pdf)"};
+  const std::string drawn = draw_figure(o, "fig9", plot, "alpha_vs_n.py");
+  FigureOutcome out{s.exit_code, "", drawn};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
                              "n_coll = c k^α fitted over k >= {:g}. Figure: `fig9.png` (and .pdf).\n\n",
                              o.preset, preset_k_min(o));

@@ -64,10 +64,8 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
     }
     plot["series"].push_back(js);
   }
-  const std::string prefix = output_path(o, "fig10");
-  write_output(prefix + ".json", plot.dump(1) + "\n");
-  draw("ntot.py", {prefix + ".json", prefix});
-  FigureOutcome out{kExitOk, "", prefix + ".png (and .pdf)"};
+  const std::string drawn = draw_figure(o, "fig10", plot, "ntot.py");
+  FigureOutcome out{kExitOk, "", drawn};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig10 --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
                              "dv0 = 0.1, stop rule `ends`), exact engine; the same launches at every k, so slopes are paired per launch. "
                              "Figure: `fig10.png` (and .pdf).\n\n",

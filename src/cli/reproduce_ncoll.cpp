@@ -111,12 +111,10 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
                                                           : fmt::format("{:.3f} ({})", pc["sigma_ratio_min"].get<double>(),
                                                                         pc["sigma_ratio_min_particle"].get<int>()));
     }
-  const std::string prefix = output_path(o, "fig8");
-  write_output(prefix + ".json", plot.dump(1) + "\n");
-  draw("partial_cond.py", {prefix + ".json", prefix});
+  const std::string drawn = draw_figure(o, "fig8", plot, "partial_cond.py");
   FigureOutcome out;
   out.exit_code = failures.empty() ? kExitOk : kExitUnphysical;
-  out.drawn = prefix + ".png (and .pdf)";
+  out.drawn = drawn;
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure fig8 --preset {}`. N = 25, k_B T0 = 1, k = {}, T = {}, e = {} (exact engine); "
       "σ_0,i is the exact elastic column's (docs/theory.md), the run at e = 1 checks it. Figure: `fig8.png` (and .pdf): "

@@ -80,6 +80,13 @@ void draw(const std::string& script, const std::vector<std::string>& args) {
   if (!problem.empty()) throw std::runtime_error(problem);
 }
 
+std::string draw_figure(const ReproduceFlags& o, const std::string& name, const nlohmann::json& data, const std::string& script) {
+  const std::string prefix = output_path(o, name);
+  write_output(prefix + ".json", data.dump(1) + "\n");
+  draw(script, {prefix + ".json", prefix});
+  return prefix + ".png (and .pdf)";
+}
+
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c) {
   std::string out;
   for (double ci : c) out += fmt::format("{}{:.12g}", out.empty() ? "" : ",", 1.0 - ci / N);

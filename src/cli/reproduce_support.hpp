@@ -2,6 +2,7 @@
 // What the figures of `granchain reproduce` share: the flags, the driven-column grids a figure
 // needs (run into the results store, reusing what it holds), the analysis of exactly those points,
 // and the files a figure writes. One reproduce_*.cpp per group of figures implements them.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ std::string output_path(const ReproduceFlags& o, const std::string& name);
 void write_output(const std::string& path, const std::string& text);
 // Runs plots/<script> with these arguments; throws std::runtime_error saying what went wrong.
 void draw(const std::string& script, const std::vector<std::string>& args);
+
+// Writes out/<name>.json and draws it with plots/<script> into out/<name>.png and .pdf; returns
+// "out/<name>.png (and .pdf)". Throws std::runtime_error.
+std::string draw_figure(const ReproduceFlags& o, const std::string& name, const nlohmann::json& data, const std::string& script);
 
 // The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c);

@@ -356,9 +356,12 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     }
     const double cap = sigma_max - sigma;
     double h = safe_step(jet, cap);
-    // Stuck at or below zero but not moving down (a function touching zero from below, within
-    // round-off): no step can be proven root-free, so step over a resolution interval instead.
-    if (h == 0 && jet.f <= 0) {
+    // At or below zero within round-off but not moving down (a function leaving zero, or touching
+    // it from below): the bound measures from zero, so the proven steps would be ~ 2 f1 / m2, far
+    // below the resolution when f1 is a grazing speed, and f would need ~ (skip / step)^2 of them
+    // to rise clear. Step over a resolution interval instead; a root within it would be a contact
+    // or gap shorter than kResolutionSkip tau_c, which the engine does not resolve.
+    if (jet.f <= 0 && h < kResolutionSkip * tau_c_) {
       h = std::min(cap, kResolutionSkip * tau_c_);
       ++counters_.resolution_skips;
     }
@@ -414,6 +417,10 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       hold_end = std::min(hold_end, until);
       return true;
     };
+    // A function at or below zero within round-off but not moving down takes a resolution interval
+    // as its step (as in first_root): its proven steps would be far below the resolution.
+    const double skip = kResolutionSkip * tau_c_;
+    auto step_of = [&](const Jet& jk, double step) { return jk.f <= 0 ? std::max(step, skip) : step; };
     for (int k = 0; k < functions; ++k) {
       if (held(k)) {
         hq[k] = kInf;
@@ -421,19 +428,19 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       }
       const Jet jk = jet_of(k);
       if (at_root(jk.f, jk.f1, jk.f2, jk.f3)) return {Root::Found, tau, k};
-      hq[k] = quadratic_step(jk.f, jk.f1, -0.5 * m2);
+      hq[k] = step_of(jk, quadratic_step(jk.f, jk.f1, -0.5 * m2));
       if (hq[k] < h) {
         h = hq[k];
         which = k;
       }
     }
     if (which >= 0) {
-      h = safe_step(jet_of(which), kInf);
+      h = step_of(jet_of(which), safe_step(jet_of(which), kInf));
       for (int k = 0; k < functions; ++k) {
         if (k == which || !(hq[k] < h) || hq[k] == kInf) continue;
         const Jet jk = jet_of(k);
-        if (jk.quartic_positive(h)) continue;  // proven positive over the whole step
-        const double hk = safe_step(jk, h);
+        if (jk.f > 0 && jk.quartic_positive(h)) continue;  // proven positive over the whole step
+        const double hk = step_of(jk, safe_step(jk, h));
         if (hk < h) {
           h = hk;
           which = k;
@@ -445,8 +452,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       continue;
     }
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
-    if (h == 0 && jet_of(which).f <= 0) {  // touching zero from below within round-off: see first_root
-      h = kResolutionSkip * tau_c_;
+    if (jet_of(which).f <= 0) {  // at zero within round-off, not moving down: a resolution skip
       ++counters_.resolution_skips;
       tau += h;
       continue;
