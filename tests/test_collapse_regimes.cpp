@@ -106,6 +106,11 @@ TEST(CollapseRegimes, CriticalRestitutionWhereTheLogSlopeVanishes) {
   ASSERT_TRUE(c.found);
   EXPECT_NEAR(c.value, ec, 4 * c.error);
   EXPECT_LT(c.error, 0.004);
+  // The same slopes with the grid ending at the last positive one: the root is not bracketed.
+  std::vector<DataPoint> cut;
+  for (const auto& p : b_of_e)
+    if (p.x < ec - 0.01) cut.push_back(p);
+  EXPECT_FALSE(e_c1_from_b(cut).found);
   // Slopes that barely fall toward the end of the grid extrapolate far beyond it: not claimed.
   EXPECT_FALSE(e_c1_from_b({{0.05, 1.00, 0.01}, {0.10, 0.98, 0.01}, {0.15, 0.97, 0.01}}).found);
   // No positive slope anywhere: nothing to find.

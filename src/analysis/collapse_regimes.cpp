@@ -151,9 +151,13 @@ CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window, d
                      (f.coef[1] * f.coef[1]);
   cv.error = std::sqrt(std::max(var, 0.0));
   cv.low = cv.high = cv.value;
-  // The root must lie beyond the last positive slope and within the window above it: a line
-  // through two or three points far from the root extrapolates to nothing reliable.
-  cv.found = cv.value >= e_max && cv.value <= e_max + window && cv.value <= 1.0;
+  // The root must lie beyond the last positive slope, within the window above it, and inside the
+  // grid (some e of the grid at or above it, where b was measured not to be positive): a line
+  // through two or three points far from the root, or past the end of the grid, extrapolates to
+  // nothing reliable.
+  double e_top = -INFINITY;
+  for (const auto& p : b_of_e) e_top = std::max(e_top, p.x);
+  cv.found = cv.value >= e_max && cv.value <= e_max + window && cv.value <= e_top && cv.value <= 1.0;
   return cv;
 }
 

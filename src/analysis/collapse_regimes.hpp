@@ -69,11 +69,12 @@ struct CriticalValue {
   std::string method;
 };
 
-// e_c1 for one N from b(e) (x = e, y = b): near e_c1 the paper finds b ~ ((1-e) - A/N)^2
-// (Eq. b_e_N), so sqrt(b) is linear in e and vanishes at e_c1. Fits sqrt(b) = s (e_c1 - e)
-// (weighted, error of sqrt(b) = error_b / (2 sqrt b)) over the points with b > z errors above zero
-// that lie within `window` below the largest such e, and returns the root with its propagated error;
-// not found unless the root lies between that largest e and `window` above it (and below 1).
+// e_c1 for one N from b(e) (x = e, y = b; uncollapsing e enter with b = 0): near e_c1 the paper
+// finds b ~ ((1-e) - A/N)^2 (Eq. b_e_N), so sqrt(b) is linear in e and vanishes at e_c1. Fits
+// sqrt(b) = s (e_c1 - e) (weighted, error of sqrt(b) = error_b / (2 sqrt b)) over the points with b
+// > z errors above zero that lie within `window` below the largest such e (e_max), and returns the
+// root with its propagated error. Found only when the root lies in [e_max, e_max + window], below 1,
+// and inside the grid (the largest e of b_of_e is at or above it).
 CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window = 0.05, double z = 2.0);
 
 // e_c2 for one N: the boundary between the power-law (convex) and the logarithmic regimes along e.

@@ -44,8 +44,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       if (asymptotic >= 3) {
         curve.c = classify(curve.n_coll_of_k, k_min);
         curve.classified = true;
-        // e_c1 is where b vanishes: an uncollapsing curve counts as b = 0 (left out of the fit).
-        if (curve.c.regime != Regime::Uncollapsing) b_of_e.push_back({e, curve.c.log_fit.b, curve.c.log_fit.b_error});
+        // e_c1 is where b vanishes: an uncollapsing curve counts as b = 0 (it brackets the root).
+        b_of_e.push_back({e, curve.c.regime == Regime::Uncollapsing ? 0.0 : curve.c.log_fit.b, curve.c.log_fit.b_error});
         es.push_back(e);
         regimes.push_back(curve.c.regime);
         if (table1_e(e) && curve.c.power_fit.alpha_error > 0)
@@ -54,7 +54,9 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       fam.curves.push_back(std::move(curve));
     }
     if (!b_of_e.empty()) {
-      fam.e_c1 = e_c1_from_b(b_of_e);
+      // The critical region's width scales as 1/N (Eq. e-fit): fit and search within 2/N of the
+      // last positive slope (at most 0.05).
+      fam.e_c1 = e_c1_from_b(b_of_e, std::min(0.05, 2.0 / fam.N));
       fam.e_c2 = e_c2_from_regimes(es, regimes);
     }
     if (!fam.alphas.empty()) {

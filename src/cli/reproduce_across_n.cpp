@@ -21,17 +21,10 @@ const std::vector<double> kCriticalC = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 
 // Table 1's and Fig. powerexpo's power-law exponents are measured at these e.
 const char* kPowerLawE = "0.1,0.2,0.3,0.4";
 
-// The measuring time across N: the paper's (preset_T) in the paper preset; the quick preset halves
-// its own (500 for N < 50, 50 for N >= 50) to keep the 560 runs of fig6 within 30 minutes on two cores.
-std::string across_T(const ReproduceFlags& o, int N) {
-  if (o.paper()) return preset_T(o, N);
-  return N < 50 ? "500" : "50";
-}
-
 std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<int>& Ns, const std::string& T0) {
   std::vector<GridBlock> blocks;
   for (int N : Ns)
-    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, kCriticalC) + "," + kPowerLawE, preset_k(o), across_T(o, N), T0});
+    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, kCriticalC) + "," + kPowerLawE, preset_k(o), preset_T(o, N), T0});
   return blocks;
 }
 
@@ -49,7 +42,7 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
   s.grid_text = fmt::format("k = {} (fits over k >= {:g}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
                             "e = 1 - c/N for c = 5, 4, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2 and e = {}; {} runs",
-                            preset_k(o), preset_k_min(o), across_T(o, 20), across_T(o, 50), kPowerLawE, s.a.runs);
+                            preset_k(o), preset_k_min(o), preset_T(o, 20), preset_T(o, 50), kPowerLawE, s.a.runs);
   return s;
 }
 

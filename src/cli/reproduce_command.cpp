@@ -71,8 +71,8 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  fig10 ntot               free-space n_tot(k), N = 3 and N = 25\n"
       "  table1                   e_c1, e_c2, alpha bar for N = 25, 50 at k_B T0 = 1, 2, 4, 10\n"
       "  all                      every one of them in this order, and report-all.md\n"
-      "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000; fig6, fig7, fig9, table1 T = 500 for N < 50 and\n"
-      "50 for N >= 50; each figure under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"
+      "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and 100 for N >= 50; each figure\n"
+      "under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"
       "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; CPU-days for fig6, fig9, table1: use a cluster).\n"
       "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.");
   sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1 or all; default fig5");
