@@ -4,7 +4,7 @@
 Usage: /usr/bin/python3 plots/bifurcation.py fig6.json PREFIX   -> PREFIX.png and PREFIX.pdf
 1 - e_c1 (points with one-standard-error bars) and 1 - e_c2 (the bracket between grid points)
 against 1/N; the fits (1 - e_c) = A/N of this data (solid) and the paper's A = 2.6 and 3.0
-(dashed, dash-dotted); shaded: the e range where the profiles show the partially condensed state.
+(dashed, dash-dotted) and its Table 1 values for N = 25, 50 (open symbols); shaded: the e range where the profiles show the partially condensed state.
 """
 import sys
 
@@ -38,6 +38,11 @@ def main(argv):
         ax.fill_between(xs, lows, highs, color="0.85", label="partially condensed (K_i inversion)")
     elif xs:
         ax.vlines(xs, lows, highs, color="0.7", lw=6, label="partially condensed (K_i inversion)")
+    # The paper's own values for N = 25 and 50 (its Table 1, k_B T0 = 1), open symbols.
+    for N, ec1, lo2, hi2 in ((25, 0.894, 0.878, 0.884), (50, 0.944, 0.936, 0.942)):
+        ax.plot(1.0 / N, 1 - ec1, "o", mfc="none", color="tab:blue", ms=7)
+        ax.errorbar(1.0 / N, 1 - 0.5 * (lo2 + hi2), yerr=0.5 * (hi2 - lo2), fmt="s", mfc="none", color="tab:red", ms=7, capsize=3)
+    ax.plot([], [], "o", mfc="none", color="0.3", label="paper, Table 1 (N = 25, 50)")
     xx = np.linspace(0, inv.max() * 1.1 if len(inv) else 0.06, 50)
     ax.plot(xx, 2.6 * xx, "k--", lw=0.8, label="paper: 2.6/N")
     ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label="paper: 3.0/N")
