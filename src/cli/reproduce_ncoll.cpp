@@ -106,7 +106,7 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
       const bool yes = pc["condensed"].get<bool>();
       if (yes) condensed += fmt::format("{}{:g}", condensed.empty() ? "" : ", ", e);
       table += fmt::format("| {:g} | {} | {} | {} | {} |\n", e, pc["K_dip_particle"].get<int>(),
-                           plus_minus(pc["K_rise"].get<double>(), pc["K_rise_err"].get<double>()), yes ? "yes" : "no",
+                           plus_minus(pc["K_rise"].get<double>(), pc["K_rise_err"].get<double>(), 4), yes ? "yes" : "no",
                            pc["sigma_ratio_min"].is_null() ? "-"
                                                           : fmt::format("{:.3f} ({})", pc["sigma_ratio_min"].get<double>(),
                                                                         pc["sigma_ratio_min_particle"].get<int>()));
