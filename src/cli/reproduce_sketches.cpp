@@ -14,17 +14,27 @@
 
 namespace granchain {
 
+namespace {
+
+// A trajectory of N particles (e, k, seed 1, exact engine) sampled every dt over [from, to].
+TraceSpec window_of(int N, double e, double k, double from, double to, double dt) {
+  TraceSpec spec;
+  spec.run.params.N = N;
+  spec.run.params.e = e;
+  spec.run.params.k = k;
+  spec.run.seed = 1;
+  spec.t_from = from;
+  spec.t_to = to;
+  spec.dt = dt;
+  return spec;
+}
+
+}  // namespace
+
 // Fig. 1dmodel: the slope flow reduced to one line perpendicular to the slope (a sketch), a snapshot
 // of a simulated column of N = 25 above its thermal floor, and that column's z_i(t).
 FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
-  TraceSpec spec;
-  spec.run.params.N = 25;
-  spec.run.params.e = 0.9;
-  spec.run.params.k = 1e6;
-  spec.run.seed = 1;
-  spec.t_from = 40;
-  spec.t_to = 50;
-  spec.dt = 0.005;
+  const TraceSpec spec = window_of(25, 0.9, 1e6, 40, 50, 0.005);
   const Trajectory tr = record_trajectory(spec);
   const std::string prefix = output_path(o, "fig1");
   write_output(prefix + "-trace.csv", samples_csv(tr));
@@ -49,17 +59,10 @@ FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
 // k = 1e14: z_i(t), and the intervals between successive collisions of the pair (1, 2), which
 // shrink by the factor q of Eq. (def_q) until they reach the contact time.
 FigureOutcome reproduce_three_body(const ReproduceFlags& o) {
-  TraceSpec spec;
-  spec.free_space = true;
-  spec.run.params.N = 3;
-  spec.run.params.e = 0.065;
-  spec.run.params.k = 1e14;
+  TraceSpec spec = window_of(3, 0.065, 1e14, 0, 2.5, 1e-3);
+  spec.free_space = true;  // launch 0 of Sec. III.D, no gravity
   spec.run.params.g = 0.0;
-  spec.run.seed = 1;
   spec.realization = 0;
-  spec.t_from = 0;
-  spec.t_to = 2.5;
-  spec.dt = 1e-3;
   const Trajectory tr = record_trajectory(spec);
   const std::string prefix = output_path(o, "fig2");
   write_output(prefix + "-trace.csv", samples_csv(tr));
