@@ -267,6 +267,26 @@ TEST_F(SweepCli, PrintedSweepsFillTheStoreTheFigureReuses) {
   EXPECT_TRUE(fs::exists(dir_ / "figs/report-fig4.md"));
 }
 
+// The smoke preset runs every figure's code path on tiny grids: all of them finish, every figure
+// file and report exists, Table 1 has its eight rows, and a repeat runs nothing new.
+TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
+  const CliResult r = run("reproduce --figure all --preset smoke --out figs -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"fig1.png", "fig2.pdf", "fig3_N3_T01_exact.png", "fig4_N6_T01_exact.pdf", "fig5_N25_T01_exact.png",
+                        "fig6.png", "fig6.pdf", "fig7.png", "fig8.png", "fig9.png", "fig10.png", "table1.csv", "report.md",
+                        "report-fig6.md", "report-fig7.md", "report-fig9.md", "report-table1.md", "report-all.md"})
+    EXPECT_TRUE(fs::exists(dir_ / "figs" / f)) << f;
+  const std::string all = slurp(dir_ / "figs/report-all.md");
+  for (const char* fig : {"| fig1 |", "| fig6 |", "| fig7 |", "| fig8 |", "| fig9 |", "| fig10 |", "| table1 |"})
+    EXPECT_NE(all.find(std::string(fig)), std::string::npos) << fig;
+  EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
+  const std::string csv = slurp(dir_ / "figs/table1.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 8) << csv;
+  const CliResult again = run("reproduce --figure fig9 --preset smoke --out figs");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("already in reproduce.db, 0 to run"), std::string::npos) << again.err;
+}
+
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law
 // (e = 0.3), a logarithm (e = 0.86) and a converging curve (e = 0.95); it names each regime and
 // finds e_c2 between 0.3 and 0.86.

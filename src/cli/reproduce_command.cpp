@@ -73,10 +73,12 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  all                      every one of them in this order, and report-all.md\n"
       "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and 100 for N >= 50; each figure\n"
       "under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"
-      "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; CPU-days for fig6, fig9, table1: use a cluster).\n"
+      "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; CPU-days for fig6, fig9, table1: use a cluster),\n"
+      "smoke (k = 1e4..1e6, T = 20 and 5, fewer free-space launches: every code path in about a minute; the numbers\n"
+      "mean nothing, it checks the pipeline).\n"
       "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.");
   sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1 or all; default fig5");
-  sub_->add_option("--preset", impl_->preset, "quick (default) or paper");
+  sub_->add_option("--preset", impl_->preset, "quick (default), paper or smoke (a pipeline check)");
   sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
   sub_->add_option("--threads", impl_->threads, "threads; default all cores");
@@ -140,8 +142,8 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
   }
   try {
     if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all", o.figure, valid));
-    if (o.preset != "quick" && o.preset != "paper")
-      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper", o.preset));
+    if (o.preset != "quick" && o.preset != "paper" && o.preset != "smoke")
+      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
     if (o.threads < 0 || o.threads > 1024)
       throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", o.threads));
     ResultsStore::preflight(o.db);

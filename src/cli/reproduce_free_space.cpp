@@ -22,9 +22,10 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
     std::string k;
     int realizations;
   };
-  const std::string k25 = o.paper() ? "1e4:1e10:x10" : "1e4:1e7:x10";
-  const std::vector<Series> series = {{3, 0.01, "1e4:1e14:x100", 1000}, {3, 0.03, "1e4:1e14:x100", 1000},
-                                      {3, 0.05, "1e4:1e14:x100", 1000}, {25, 0.3, k25, 200}, {25, 0.5, k25, 200}};
+  const std::string k25 = o.paper() ? "1e4:1e10:x10" : o.smoke() ? "1e4:1e5:x10" : "1e4:1e7:x10";
+  const std::string k3 = o.smoke() ? "1e4:1e8:x100" : "1e4:1e14:x100";
+  const int launches3 = o.smoke() ? 100 : 1000, launches25 = o.smoke() ? 20 : 200;
+  const std::vector<Series> series = {{3, 0.01, k3, launches3}, {3, 0.03, k3, launches3}, {3, 0.05, k3, launches3}, {25, 0.3, k25, launches25}, {25, 0.5, k25, launches25}};
   nlohmann::json plot = {{"series", nlohmann::json::array()}};
   std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
   std::string n25 = "| e | k1 → k2 | n_tot(k2) | local α |\n|---|---|---|---|\n";

@@ -16,11 +16,12 @@
 
 namespace granchain {
 
-std::string preset_k(const ReproduceFlags& o) { return o.paper() ? "1e5:1e10:x10" : "1e4:1e8:x10"; }
-double preset_k_min(const ReproduceFlags& o) { return o.paper() ? 1e6 : 1e5; }
-std::string preset_k_max(const ReproduceFlags& o) { return o.paper() ? "1e10" : "1e8"; }
+std::string preset_k(const ReproduceFlags& o) { return o.paper() ? "1e5:1e10:x10" : o.smoke() ? "1e4:1e6:x10" : "1e4:1e8:x10"; }
+double preset_k_min(const ReproduceFlags& o) { return o.paper() ? 1e6 : o.smoke() ? 1e4 : 1e5; }
+std::string preset_k_max(const ReproduceFlags& o) { return o.paper() ? "1e10" : o.smoke() ? "1e6" : "1e8"; }
 std::string preset_T(const ReproduceFlags& o, int N) {
   if (o.paper()) return N < 50 ? "1e4" : "1e3";
+  if (o.smoke()) return N < 50 ? "20" : "5";
   return N < 50 ? "1000" : "100";
 }
 

@@ -17,6 +17,7 @@ struct ReproduceFlags {
   bool quiet = false;
   bool print_sweeps = false;  // print the equivalent `granchain sweep` commands and run nothing
   bool paper() const { return preset == "paper"; }
+  bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
 };
 
 // What one figure produced: its exit code (kExitOk, or kExitUnphysical when points failed and
@@ -33,7 +34,8 @@ struct GridBlock {
 };
 
 // The presets' k grids and times. quick: k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and
-// 100 for N >= 50; paper: k = 1e5..1e10, fits over k >= 1e6, T = 1e4 and 1e3 (the paper's).
+// 100 for N >= 50; paper: k = 1e5..1e10, fits over k >= 1e6, T = 1e4 and 1e3 (the paper's);
+// smoke: k = 1e4..1e6, fits over all, T = 20 and 5 (every code path in about a minute).
 std::string preset_k(const ReproduceFlags& o);
 double preset_k_min(const ReproduceFlags& o);
 std::string preset_k_max(const ReproduceFlags& o);  // the largest k, for profiles
