@@ -8,14 +8,11 @@ For every (engine, N, T0) of the analysis writes PREFIX_N<N>_T0<T0>_<engine>.png
 (c) n_coll against e for every k, with e_c1 and the e_c2 bracket marked.
 Error bars are one standard error. Prints the files written.
 """
-import json
 import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from plot_common import load, plt, save, usage
 
 
 def draw(family, prefix, k_min):
@@ -69,20 +66,16 @@ def draw(family, prefix, k_min):
     axes[0].legend(fontsize=6, ncol=2)
     axes[2].legend(fontsize=6)
     fig.suptitle("N = %d, k_B T0 = %g, engine %s" % (family["N"], family["T0"], family["engine"]), fontsize=10)
-    fig.tight_layout()
     stem = "%s_N%d_T0%g_%s" % (prefix, family["N"], family["T0"], family["engine"])
-    fig.savefig(stem + ".png", dpi=150)
-    fig.savefig(stem + ".pdf")
+    save(fig, stem)
     plt.close(fig)
     return stem + ".png"
 
 
 def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write(__doc__)
+    if usage(__doc__, argv, 2):
         return 2
-    with open(argv[1]) as f:
-        analysis = json.load(f)
+    analysis = load(argv[1])
     for family in analysis["families"]:
         out = draw(family, argv[2], analysis.get("k_min", 0.0))
         if out:

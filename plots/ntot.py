@@ -7,22 +7,17 @@ Usage: /usr/bin/python3 plots/ntot.py fig10.json PREFIX   -> PREFIX.png and PREF
     (-ln 10 / ln q(e) per decade; twice Eq. ntot-log, docs/collapse.md) through the last point;
 (b) N = 25: log10 n_tot against log10 k. Error bars are one standard error.
 """
-import json
 import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from plot_common import load, plt, save, usage
 
 
 def main(argv):
-    if len(argv) != 3:
-        sys.stderr.write(__doc__)
+    if usage(__doc__, argv, 2):
         return 2
-    with open(argv[1]) as f:
-        data = json.load(f)
+    data = load(argv[1])
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
     for s in data["series"]:
         x = np.log10(np.array(s["k"]))
@@ -45,9 +40,7 @@ def main(argv):
     axes[1].set_title("(b) N = 25", fontsize=9)
     for ax in axes:
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(argv[2] + ".png", dpi=150)
-    fig.savefig(argv[2] + ".pdf")
+    save(fig, argv[2])
     return 0
 
 

@@ -6,11 +6,9 @@ Writes out.png and the same figure as PDF beside it.
 """
 import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from plot_common import plt
 
 
 def main(argv):

@@ -63,7 +63,7 @@ std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyA
   const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
   if (fc == a.condensation.end()) return out;
   for (const auto& [e, c] : fc->second)
-    if (c.check.condensed && f.N * (1.0 - e) <= 5.0 + 1e-9) out.push_back(e);
+    if (c.check.condensed && f.N * (1.0 - e) <= kCriticalC.front() + 1e-9) out.push_back(e);
   return out;
 }
 
@@ -71,11 +71,6 @@ const analysis::AcrossN* across_at(const StoreAnalysis& a, double kT0) {
   for (const auto& x : a.report.across)
     if (x.engine == "exact" && x.kT0 == kT0) return &x;
   return nullptr;
-}
-
-nlohmann::json critical_json(const analysis::CriticalValue& c) {
-  if (!c.found) return nullptr;
-  return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}};
 }
 
 }  // namespace

@@ -66,12 +66,12 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
   return out;
 }
 
+}  // namespace
+
 nlohmann::json critical_json(const analysis::CriticalValue& c) {
   if (!c.found) return nullptr;
   return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}, {"method", c.method}};
 }
-
-}  // namespace
 
 std::string plus_minus(double v, double e, int digits) {
   if (!std::isfinite(v)) return "-";

@@ -33,6 +33,9 @@ struct StoreAnalysis {
   nlohmann::json json;
 };
 
+// A critical value as JSON (value, error, bracket low/high, method), null when not found.
+nlohmann::json critical_json(const analysis::CriticalValue& c);
+
 // "v ± e" with `digits` decimals, or "-" when v is not finite.
 std::string plus_minus(double v, double e, int digits = 3);
 

@@ -452,11 +452,9 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       continue;
     }
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
-    if (jet_of(which).f <= 0) {  // at zero within round-off, not moving down: a resolution skip
-      ++counters_.resolution_skips;
-      tau += h;
-      continue;
-    }
+    // At zero within round-off, not moving down, and its step raised to the resolution interval:
+    // a resolution skip (no root can be bracketed from it: root_upper is infinite when f1 >= 0).
+    if (h == skip && jet_of(which).f <= 0) ++counters_.resolution_skips;
     if (jet_of(which).root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
     tau += h;
   }
