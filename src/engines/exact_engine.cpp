@@ -324,6 +324,28 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
   double sigma = 0.0, amplitude = 0.0;
+  // Compression only pulls a cluster's edge particle towards its centre of mass: the mode part
+  // of a gap or of the floor height is a non-negative combination of the cluster's overlaps
+  // (predict_gap), and every overlap stays >= 0 until the cluster's own next event, which bounds
+  // sigma_max. So f(s) >= c0 + c1 s + p2 s^2 / 2 with no mode evaluated: no root before that
+  // parabola's first root. The margin covers overlaps of round-off size below zero (resolution
+  // skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of the mode amplitudes.
+  if (fn.modes_nonnegative) {
+    double reach = 0.0;  // sum_j |a_j| sqrt(E_j) / omega0_j >= |mode part| at all later times
+    for (int k = 0; k < fn.terms; ++k) {
+      const EdgeTerm& term = fn.term[k];
+      for (int j = 0; j < term.table->M; ++j) {
+        const ModeConstants& mc = term.table->modes[j];
+        const double y = term.y0[j], yd = term.yd0[j];
+        reach += std::abs(term.coef[j]) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
+      }
+    }
+    const double lower0 = fn.c0 - 1e-10 * reach;
+    if (lower0 > 0) {
+      sigma = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
+      if (sigma >= sigma_max) return {Root::None, sigma_max, 0};
+    }
+  }
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
     Jet jet{fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma), fn.c1 + fn.p2 * sigma, fn.p2, 0.0, fn.p2, 0.0, 0.0};
@@ -506,6 +528,14 @@ void ExactEngine::predict_cluster(int lo) {
   }
 }
 
+// Held pairs (merge) may sit below zero while held, so their cluster's overlaps are not bounded.
+bool ExactEngine::has_holds(int lo) const {
+  for (int i = lo; i < hi_[lo]; ++i) {
+    if (hold_until_[i] > t0_[lo]) return true;
+  }
+  return false;
+}
+
 void ExactEngine::predict_gap(int i) {
   const int a = lo_of_[i], b = i + 1;
   const double t = gap_t_[i];
@@ -520,6 +550,9 @@ void ExactEngine::predict_gap(int i) {
   fn.c0 = gap_s_[i] - (gap_ub_[i] - tb * (V0_[b] - 0.5 * g_ * tb)) + (gap_ua_[i] - ta * (V0_[a] - 0.5 * g_ * ta));
   if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
   if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
+  // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
+  // z_bottom - z_com = const + sum_i x_i (n-1-i)/n. Both mode parts enter f with weights >= 0.
+  fn.modes_nonnegative = !has_holds(a) && !has_holds(b);
   const Root r = first_root(fn, horizon - t);
   switch (r.kind) {
     case Root::Found: set_slot(gap_slot(i), t + r.sigma, SlotKind::ContactBegin, i); break;
@@ -541,6 +574,7 @@ void ExactEngine::predict_floor() {
   fn.p2 = -g_;
   fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
   if (cluster_size(0) >= 2) fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
+  fn.modes_nonnegative = !has_holds(0);
   const Root r = first_root(fn, slots_[cluster_slot(0)].t - t);
   switch (r.kind) {
     case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;

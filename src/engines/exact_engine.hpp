@@ -72,6 +72,7 @@ class ExactEngine final : public Engine {
     double c0 = 0, c1 = 0, p2 = 0;
     EdgeTerm term[2];
     int terms = 0;
+    bool modes_nonnegative = false;  // every term's mode part is >= 0 up to sigma_max (predict_gap)
   };
 
   // --- clusters (indexed by their lowest particle lo) ---
@@ -98,6 +99,7 @@ class ExactEngine final : public Engine {
   // --- prediction ---
   void predict_cluster(int lo);
   void predict_gap(int i);
+  bool has_holds(int lo) const;  // a held pair in cluster lo (merge)
   void predict_floor();
   Root first_root(const EdgeFunction& f, double sigma_max) const;
   Root first_internal_root(int lo, bool watch_pass_through) const;
