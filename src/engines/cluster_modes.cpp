@@ -21,9 +21,14 @@ ModeConstants::ModeConstants(double beta_, double omega0_squared)
     w = 0.0;
   }
   const double omega0 = std::sqrt(omega0_squared);
-  b2 = 2.0 * beta + omega0;
-  const double b3 = 2.0 * beta * b2 + omega0_squared;
-  b4 = 2.0 * beta * b3 + omega0_squared * b2;
+  if (kind == ModeKind::Under) {
+    bound[0] = 1.0;
+    for (int n = 1; n <= kTaylorOrder; ++n) bound[n] = bound[n - 1] * omega0;
+  } else {
+    bound[0] = 1.0 / omega0;
+    bound[1] = 1.0;
+    for (int n = 1; n < kTaylorOrder; ++n) bound[n + 1] = 2.0 * beta * bound[n] + omega0_squared * bound[n - 1];
+  }
 }
 
 // With C(t), S(t) the solutions of the undamped-frame equation (C(0) = 1, S(0) = 0, S'(0) = 1:
@@ -92,6 +97,8 @@ ClusterModeTable::ClusterModeTable(int n_, double k_over_m, double D) : n(n_), M
     modes.emplace_back(0.5 * D * lambda, k_over_m * lambda);
     for (int i = 0; i < M; ++i) S[i * M + j] = s_max * std::sin((i + 1) * (j + 1) * std::numbers::pi / n);
   }
+  abs_S.resize(S.size());
+  for (std::size_t q = 0; q < S.size(); ++q) abs_S[q] = std::abs(S[q]);
   // z_p - z_com = const + sum_i x_i [ (n-1-i)/n - [i < p] ]  (z_{i+1} = z_i + d - x_i).
   for (int j = 0; j < M; ++j) {
     for (int i = 0; i < M; ++i) {

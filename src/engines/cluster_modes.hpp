@@ -7,6 +7,7 @@
 // S_ij = sqrt(2/n) sin(i j pi / n) and lambda_j = 4 sin^2(j pi / (2n)), j = 1..n-1, so each mode
 // y_j = (S^T x)_j is an independent damped oscillator y'' + D lambda_j y' + (k/m) lambda_j y = 0:
 // underdamped for D^2 lambda_j < 4 k/m, overdamped above (only for e < exp(-pi)).
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -14,21 +15,36 @@ namespace granchain {
 
 enum class ModeKind : unsigned char { Under, Critical, Over };
 
+// Order of the Taylor bounds of the exact engine's event searches: derivatives 0 .. kTaylorOrder-1
+// are used exactly and the kTaylorOrder-th is bounded.
+constexpr int kTaylorOrder = 6;
+
 // One damped oscillator y'' + 2 beta y' + omega0^2 y = 0 and the bounds the root finder needs.
-// Its energy E = y'^2 + omega0^2 y^2 never grows (dE/dt = -4 beta y'^2), and every derivative
-// obeys the same equation, y^(n+1) = -2 beta y^(n) - omega0^2 y^(n-1); so for all later times
-//   |y^(n)| <= b_n sqrt(E),  b_0 = 1/omega0, b_1 = 1, b_(n+1) = 2 beta b_n + omega0^2 b_(n-1)
-// (b2 = 2 beta + omega0, b3 = 2 beta b2 + omega0^2, b4 = 2 beta b3 + omega0^2 b2).
+// Every derivative obeys the same equation, so bounds on |y^(n)| at all later times follow from
+// one amplitude of the state now:
+//  - underdamped: y = Re(C e^{z t}) with z = -beta + i w, |z| = omega0, so
+//      |y^(n)(t')| <= omega0^n |C(t)| for all t' >= t,  |C|^2 = y^2 + ((y' + beta y) / w)^2;
+//  - otherwise: the energy E = y'^2 + omega0^2 y^2 never grows (dE/dt = -4 beta y'^2) and
+//      |y^(n)| <= b_n sqrt(E),  b_0 = 1/omega0, b_1 = 1, b_(n+1) = 2 beta b_n + omega0^2 b_(n-1).
+// bound[n] holds omega0^n or b_n, amplitude() |C| or sqrt(E).
 struct ModeConstants {
   ModeConstants() = default;
   ModeConstants(double beta, double omega0_squared);
   double beta = 0, omega0_sq = 0, w = 0;  // w = sqrt(|omega0^2 - beta^2|)
-  double b2 = 0, b4 = 0;
+  double bound[kTaylorOrder + 1] = {};
   ModeKind kind = ModeKind::Under;
 
   // y(t), y'(t) from y(0) = y0, y'(0) = v0, exactly.
   void evolve(double y0, double v0, double t, double& y, double& yd) const;
   double acceleration(double y, double yd) const { return -2.0 * beta * yd - omega0_sq * y; }
+  // The amplitude A of the state (y, y'): |y^(n)| <= bound[n] A from now on.
+  double amplitude(double y, double yd) const {
+    if (kind == ModeKind::Under) {
+      const double q = (yd + beta * y) / w;
+      return std::sqrt(y * y + q * q);
+    }
+    return std::sqrt(yd * yd + omega0_sq * y * y);
+  }
 };
 
 // y'' + 2 beta y' + omega0^2 y = 0 solved exactly from y(0), y'(0).
@@ -50,6 +66,7 @@ struct ClusterModeTable {
   int n;                             // particles
   int M;                             // modes = contacts = n - 1
   std::vector<double> S;             // S[i * M + j]: overlap i in mode j (orthogonal, symmetric)
+  std::vector<double> abs_S;         // |S[i * M + j]|
   std::vector<ModeConstants> modes;  // mode j
   std::vector<double> bottom, top;   // z_1 - z_com and z_n - z_com per unit y_j (constant part aside)
   double s_max = 0;                  // sqrt(2/n) >= |S_ij|

@@ -1,7 +1,10 @@
 #pragma once
 // The schedule of an event-driven engine: one predicted time per slot (a cluster, a gap, the
-// floor), kept in a tournament tree so that the earliest slot is read in O(1) and a slot is
-// re-predicted in O(log n) — usually less, because the climb stops where nothing changes.
+// floor). Slots are grouped in blocks of kBlock that keep their earliest time; setting a slot
+// touches its block only (a re-scan of kBlock times when the block's earliest slot moved later),
+// and the earliest slot overall is found by scanning the block minima once per event. An event
+// re-predicts several slots, so this costs less than a heap or tournament-tree climb per slot
+// (each climb is a chain of dependent loads and stores). Ties go to the lowest slot.
 #include <limits>
 #include <vector>
 
@@ -13,40 +16,65 @@ class EventQueue {
 
   // All slots at +infinity.
   void reset(int slots) {
-    leaves_ = 1;
-    while (leaves_ < slots) leaves_ *= 2;
-    tree_.assign(2 * leaves_, Node{kNever, 0});
-    for (int s = 0; s < leaves_; ++s) tree_[leaves_ + s].slot = s;
-    for (int node = leaves_ - 1; node >= 1; --node) tree_[node] = tree_[2 * node];
+    blocks_ = (slots + kBlock - 1) / kBlock;
+    t_.assign(static_cast<std::size_t>(blocks_) * kBlock, kNever);
+    block_t_.assign(blocks_, kNever);
+    block_slot_.resize(blocks_);
+    for (int b = 0; b < blocks_; ++b) block_slot_[b] = b * kBlock;
+    stale_ = true;
   }
 
   void set(int slot, double t) {
-    int node = leaves_ + slot;
-    if (tree_[node].t == t) return;  // same time (often +inf again): the tree stays as it is
-    tree_[node].t = t;
-    // Each node holds the earliest of its two children (the left one on a tie). Above a node
-    // whose winner and time did not change, nothing changes.
-    for (node >>= 1; node >= 1; node >>= 1) {
-      const Node& a = tree_[2 * node];
-      const Node& b = tree_[2 * node + 1];
-      const Node& w = b.t < a.t ? b : a;
-      if (tree_[node].slot == w.slot && tree_[node].t == w.t) break;
-      tree_[node] = w;
+    const double old = t_[slot];
+    if (old == t) return;  // same time (often +inf again): nothing changes
+    t_[slot] = t;
+    const int b = slot / kBlock;
+    if (t < block_t_[b] || (t == block_t_[b] && slot < block_slot_[b])) {
+      block_t_[b] = t;
+      block_slot_[b] = slot;
+    } else if (slot == block_slot_[b]) {  // the block's earliest moved later: scan the block
+      const int first = b * kBlock;
+      int best = first;
+      for (int s = first + 1; s < first + kBlock; ++s) {
+        if (t_[s] < t_[best]) best = s;
+      }
+      block_t_[b] = t_[best];
+      block_slot_[b] = best;
+    } else {
+      return;  // the block's earliest is unchanged
     }
+    stale_ = true;
   }
 
-  int next_slot() const { return tree_[1].slot; }  // the earliest (the lowest slot on a tie)
-  double next_time() const { return tree_[1].t; }
+  int next_slot() const {  // the earliest (the lowest slot on a tie)
+    if (stale_) find_next();
+    return next_slot_;
+  }
+  double next_time() const {
+    if (stale_) find_next();
+    return next_t_;
+  }
 
   static constexpr double kNever = std::numeric_limits<double>::infinity();
 
  private:
-  struct Node {
-    double t;  // the earliest slot time below this node (a leaf: its slot's time)
-    int slot;  // and its slot
-  };
-  std::vector<Node> tree_;
-  int leaves_ = 1;
+  static constexpr int kBlock = 8;
+  void find_next() const {
+    int best = 0;
+    for (int b = 1; b < blocks_; ++b) {
+      if (block_t_[b] < block_t_[best]) best = b;
+    }
+    next_t_ = block_t_[best];
+    next_slot_ = block_slot_[best];
+    stale_ = false;
+  }
+  std::vector<double> t_;           // each slot's time (padded to whole blocks with +inf)
+  std::vector<double> block_t_;     // earliest time in each block
+  std::vector<int> block_slot_;     // and its slot
+  int blocks_ = 1;
+  mutable bool stale_ = true;
+  mutable double next_t_ = kNever;
+  mutable int next_slot_ = 0;
 };
 
 }  // namespace granchain

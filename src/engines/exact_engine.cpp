@@ -30,51 +30,87 @@ double quadratic_step(double f, double f1, double a) {
   return f1 >= 0 ? (f1 + disc) / (-2.0 * a) : 2.0 * f / (disc - f1);
 }
 
+constexpr int P = kTaylorOrder;
+
+// 1/n! and the Bernstein weights C(k, i) / C(P, i), i <= k <= P.
+struct TaylorTables {
+  double inv_fact[P + 1];
+  double bernstein[P + 1][P + 1];
+  TaylorTables() {
+    inv_fact[0] = 1.0;
+    for (int n = 1; n <= P; ++n) inv_fact[n] = inv_fact[n - 1] / n;
+    auto binom = [](int n, int k) {
+      double c = 1.0;
+      for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+      return c;
+    };
+    for (int k = 0; k <= P; ++k) {
+      for (int i = 0; i <= P; ++i) bernstein[k][i] = i <= k ? binom(k, i) / binom(P, i) : 0.0;
+    }
+  }
+};
+const TaylorTables kTaylor;
+
 // The watched function f near the current search time s, for steps h >= 0:
-//   f(s + h) >= f + f1 h + (p2 - m2) h^2 / 2                              (quadratic bound)
-//   f(s + h) >= f + f1 h + f2 h^2 / 2 + f3 h^3 / 6 - m4 h^4 / 24           (quartic bound)
-// with f..f3 the exact derivatives at s, p2 the exact second derivative of its polynomial part
-// (the modes' third and higher derivatives are its only ones), and m2 >= |W''|, m4 >= |W''''|
-// bounds on its mode part W over all later times (ModeConstants: b_n times the non-increasing
-// mode energies).
+//   f(s + h) >= f + f' h + (p2 - m2) h^2 / 2                                    (quadratic bound)
+//   f(s + h) >= sum_{n < P} f^(n) h^n / n! - mP h^P / P!                        (order-P bound)
+// with f^(n) the exact derivatives at s, p2 the exact second derivative of its polynomial part
+// (the modes' third and higher derivatives are its only ones), and m2 >= |W''|, mP >= |W^(P)|
+// bounds on its mode part W over all later times (ModeConstants::bound times the mode amplitudes).
 struct Jet {
-  double f, f1, f2, f3;
-  double p2, m2, m4;
-  // The quartic lower bound and its slope.
-  double quartic(double h) const { return f + h * (f1 + h * (0.5 * f2 + h * (f3 / 6.0 - m4 * h / 24.0))); }
-  double quartic_slope(double h) const { return f1 + h * (f2 + h * (0.5 * f3 - m4 * h / 6.0)); }
+  double d[P];  // f, f', ..., f^(P-1) at s
+  double p2 = 0, m2 = 0, mP = 0;
+  double f() const { return d[0]; }
+  // The order-P lower bound and its slope.
+  double lower(double h) const {
+    double v = -mP * kTaylor.inv_fact[P];
+    for (int n = P - 1; n >= 0; --n) v = v * h + d[n] * kTaylor.inv_fact[n];
+    return v;
+  }
+  double lower_slope(double h) const {
+    double v = -mP * kTaylor.inv_fact[P - 1];
+    for (int n = P - 1; n >= 1; --n) v = v * h + d[n] * kTaylor.inv_fact[n - 1];
+    return v;
+  }
   // Upper end of the interval that must hold f's first root when f > 0 up to the safe step h:
-  // f(s + h) <= f + f1 h + (p2 + m2) h^2 / 2, so f has a root by the first root of that parabola
+  // f(s + h) <= f + f' h + (p2 + m2) h^2 / 2, so f has a root by the first root of that parabola
   // (+inf if it has none).
   double root_upper() const {
-    const double a = 0.5 * (p2 + m2);
-    if (!(f1 < 0)) return kInf;
-    const double disc = f1 * f1 - 4.0 * a * std::max(f, 0.0);
-    return disc < 0 ? kInf : 2.0 * std::max(f, 0.0) / (std::sqrt(disc) - f1);
+    const double a = 0.5 * (p2 + m2), f0 = std::max(d[0], 0.0);
+    if (!(d[1] < 0)) return kInf;
+    const double disc = d[1] * d[1] - 4.0 * a * f0;
+    return disc < 0 ? kInf : 2.0 * f0 / (std::sqrt(disc) - d[1]);
   }
-  // Is the quartic bound positive on [0, H]? Sufficient test: every Bernstein coefficient of it
+  // Is the order-P bound positive on [0, H]? Sufficient test: every Bernstein coefficient of it
   // on [0, H] is positive (the polynomial is a convex combination of them there).
-  bool quartic_positive(double H) const {
-    const double a0 = f, a1 = f1 * H, a2 = 0.5 * f2 * H * H, a3 = f3 * H * H * H / 6.0,
-                 a4 = -m4 * H * H * H * H / 24.0;
-    return a0 + 0.25 * a1 > 0 && a0 + 0.5 * a1 + a2 / 6.0 > 0 && a0 + 0.75 * a1 + 0.5 * a2 + 0.25 * a3 > 0 &&
-           a0 + a1 + a2 + a3 + a4 > 0;
+  bool lower_positive(double H) const {
+    double a[P + 1];
+    double Hn = 1.0;
+    for (int n = 0; n < P; ++n, Hn *= H) a[n] = d[n] * kTaylor.inv_fact[n] * Hn;
+    a[P] = -mP * kTaylor.inv_fact[P] * Hn;
+    if (!(a[0] > 0)) return false;
+    for (int k = 1; k <= P; ++k) {
+      double b = 0.0;
+      for (int i = 0; i <= k; ++i) b += kTaylor.bernstein[k][i] * a[i];
+      if (!(b > 0)) return false;
+    }
+    return true;
   }
 };
 
 // A step h <= cap over which f is proven positive (f > 0 at the start). The quadratic bound
-// gives a first safe step; Newton's method on the quartic bound then looks for that bound's
+// gives a first safe step; Newton's method on the order-P bound then looks for that bound's
 // first root, and the step is extended to just short of it when the Bernstein test proves the
-// quartic positive up there. Near a simple root of f the quartic's root differs from f's by
-// O(m4 h^4 / |f1|), so the search closes in on an event with few steps. Returns cap when the
-// whole interval is safe.
+// bound positive up there. Near a simple root of f the bound's root differs from f's by
+// O(mP h^P / (P! |f'|)), so the search closes in on an event with few steps. Returns cap when
+// the whole interval is safe.
 double safe_step(const Jet& j, double cap) {
-  const double h = quadratic_step(j.f, j.f1, 0.5 * (j.p2 - j.m2));
+  const double h = quadratic_step(j.d[0], j.d[1], 0.5 * (j.p2 - j.m2));
   if (h >= cap) return cap;
-  if (!(j.f > 0)) return h;
+  if (!(j.d[0] > 0)) return h;
   double r = h;
   for (int k = 0; k < 8; ++k) {
-    const double p = j.quartic(r), dp = j.quartic_slope(r);
+    const double p = j.lower(r), dp = j.lower_slope(r);
     double next = dp < 0 ? r - p / dp : 2.0 * r + h;
     if (!(next > 0)) break;
     if (next >= cap) {
@@ -86,10 +122,10 @@ double safe_step(const Jet& j, double cap) {
     if (converged) break;
   }
   if (!(r > h)) return h;
-  // Just short of the quartic's root, where it is still clearly positive.
+  // Just short of the bound's root, where it is still clearly positive.
   double H = r >= cap ? cap : h + (r - h) * (1.0 - 1e-6);
   for (int tries = 0; tries < 2; ++tries, H = h + 0.5 * (H - h)) {
-    if (j.quartic_positive(H)) return H;
+    if (j.lower_positive(H)) return H;
   }
   return h;
 }
@@ -145,6 +181,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     sx4_[k].assign(n_, 0.0);
   }
   shq_.assign(2 * n_, 0.0);
+  sder_.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  samp_.assign(2 * n_, 0.0);
 
   // Clusters: maximal runs of overlapping neighbours.
   std::vector<double> x(n_, 0.0);
@@ -348,7 +386,12 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
   }
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
-    Jet jet{fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma), fn.c1 + fn.p2 * sigma, fn.p2, 0.0, fn.p2, 0.0, 0.0};
+    Jet jet;
+    jet.d[0] = fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma);
+    jet.d[1] = fn.c1 + fn.p2 * sigma;
+    jet.d[2] = fn.p2;
+    for (int n = 3; n < P; ++n) jet.d[n] = 0.0;
+    jet.p2 = fn.p2;
     for (int k = 0; k < fn.terms; ++k) {
       const EdgeTerm& term = fn.term[k];
       const double tau = term.tau0 + sigma;
@@ -357,23 +400,28 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         double y, yd;
         mc.evolve(term.y0[j], term.yd0[j], tau, y, yd);
         const double a = term.sign * term.coef[j];
-        const double ydd = mc.acceleration(y, yd);
-        const double sqrtE = std::sqrt(yd * yd + mc.omega0_sq * y * y);
-        jet.f += a * y;
-        jet.f1 += a * yd;
-        jet.f2 += a * ydd;
-        jet.f3 += a * mc.acceleration(yd, ydd);
-        jet.m2 += std::abs(a) * mc.b2 * sqrtE;
-        jet.m4 += std::abs(a) * mc.b4 * sqrtE;
-        if (it == 0) amplitude += std::abs(a) * sqrtE / std::sqrt(mc.omega0_sq);
+        // Derivatives 0 .. P-1 of a y_j by the mode's own equation.
+        double ym = y, yn = yd;
+        jet.d[0] += a * y;
+        jet.d[1] += a * yd;
+        for (int n = 2; n < P; ++n) {
+          const double next = mc.acceleration(ym, yn);
+          jet.d[n] += a * next;
+          ym = yn;
+          yn = next;
+        }
+        const double amp = std::abs(a) * mc.amplitude(y, yd);
+        jet.m2 += mc.bound[2] * amp;
+        jet.mP += mc.bound[P] * amp;
+        if (it == 0) amplitude += std::abs(a) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
       }
     }
-    if (at_root(jet.f, jet.f1, jet.f2, jet.f3)) return {Root::Found, sigma, 0};
+    if (at_root(jet.d[0], jet.d[1], jet.d[2], jet.d[3])) return {Root::Found, sigma, 0};
     // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
     // f(s) >= f(0) - 2A + c1 s + p2 s^2/2 with A = sum |a_j| sqrt(E_j)/omega0_j. If that parabola
     // stays positive up to sigma_max there is no root (most gaps next to a short contact).
     if (it == 0) {
-      const double lower0 = jet.f - 2.0 * amplitude;
+      const double lower0 = jet.d[0] - 2.0 * amplitude;
       if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
     }
     const double cap = sigma_max - sigma;
@@ -383,7 +431,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     // below the resolution when f1 is a grazing speed, and f would need ~ (skip / step)^2 of them
     // to rise clear. Step over a resolution interval instead; a root within it would be a contact
     // or gap shorter than kResolutionSkip tau_c, which the engine does not resolve.
-    if (jet.f <= 0 && h < kResolutionSkip * tau_c_) {
+    if (jet.d[0] <= 0 && h < kResolutionSkip * tau_c_) {
       h = std::min(cap, kResolutionSkip * tau_c_);
       ++counters_.resolution_skips;
     }
@@ -400,33 +448,65 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
 ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_through) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
   const int M = tab.M;
-  // Mode derivatives 0..3 and the overlaps' (x = S y for each).
-  double* y[4] = {sy4_[0].data(), sy4_[1].data(), sy4_[2].data(), sy4_[3].data()};
-  double* x[4] = {sx4_[0].data(), sx4_[1].data(), sx4_[2].data(), sx4_[3].data()};
+  // Modes and their rates (yn, yn + M), the amplitudes times bound[2] and bound[P], and the
+  // overlaps and their rates (x = S y).
+  double* yn = sder_.data();
+  double* amp2 = samp_.data();
+  double* ampP = samp_.data() + M;
+  double* x = sx4_[0].data();
+  double* xd = sx4_[1].data();
   double tau = search_from_[lo];
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
-    double sum2 = 0.0, sum4 = 0.0;
+    double sum2 = 0.0;
     for (int j = 0; j < M; ++j) {
       const ModeConstants& mc = tab.modes[j];
-      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y[0][j], y[1][j]);
-      y[2][j] = mc.acceleration(y[0][j], y[1][j]);
-      y[3][j] = mc.acceleration(y[1][j], y[2][j]);
-      const double sqrtE = std::sqrt(y[1][j] * y[1][j] + mc.omega0_sq * y[0][j] * y[0][j]);
-      sum2 += mc.b2 * sqrtE;
-      sum4 += mc.b4 * sqrtE;
+      double y, yd;
+      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y, yd);
+      yn[j] = y;
+      yn[M + j] = yd;
+      const double amp = mc.amplitude(y, yd);
+      amp2[j] = mc.bound[2] * amp;
+      ampP[j] = mc.bound[P] * amp;
+      sum2 += amp2[j];
     }
-    const double m2 = tab.s_max * sum2, m4 = tab.s_max * sum4;  // |S_ij| <= sqrt(2/n)
-    tab.to_overlaps4(y, x);
-    // Function k < M is overlap k; k >= M (when watched) is d - overlap (k - M).
+    const double m2 = tab.s_max * sum2;  // >= |x_i''| for every i (|S_ij| <= sqrt(2/n))
+    tab.to_overlaps(yn, x);
+    tab.to_overlaps(yn + M, xd);
+    // Function k < M is overlap k; k >= M (when watched) is d - overlap (k - M). Its full jet:
+    // higher derivatives and remainder bounds from its own row of S.
     const int functions = watch_pass_through ? 2 * M : M;
     auto jet_of = [&](int k) {
-      if (k < M) return Jet{x[0][k], x[1][k], x[2][k], x[3][k], 0.0, m2, m4};
-      const int i = k - M;
-      return Jet{d_ - x[0][i], -x[1][i], -x[2][i], -x[3][i], 0.0, m2, m4};
+      const int i = k < M ? k : k - M;
+      const double sign = k < M ? 1.0 : -1.0;
+      const double* row = &tab.S[static_cast<std::size_t>(i) * M];
+      const double* abs_row = &tab.abs_S[static_cast<std::size_t>(i) * M];
+      Jet jk;
+      jk.d[0] = k < M ? x[i] : d_ - x[i];
+      jk.d[1] = sign * xd[i];
+      double sum[P] = {};
+      double b2 = 0.0, bP = 0.0;
+      for (int j = 0; j < M; ++j) {
+        // Derivatives 2 .. P-1 of mode j by its own equation, kept in registers.
+        const ModeConstants& mc = tab.modes[j];
+        double ym = yn[j], yc = yn[M + j];
+        for (int n = 2; n < P; ++n) {
+          const double next = mc.acceleration(ym, yc);
+          sum[n] += row[j] * next;
+          ym = yc;
+          yc = next;
+        }
+        b2 += abs_row[j] * amp2[j];
+        bP += abs_row[j] * ampP[j];
+      }
+      for (int n = 2; n < P; ++n) jk.d[n] = sign * sum[n];
+      jk.m2 = b2;
+      jk.mP = bP;
+      return jk;
     };
-    // Quadratic steps first (cheap); the quartic bound can only lengthen a step, so it is worked
-    // out only for functions whose quadratic step is shorter than the best step so far.
+    // Quadratic steps first (cheap, from x and x' with the common m2); the full bound can only
+    // lengthen a step, so it is worked out only for functions whose quadratic step is shorter
+    // than the best step so far.
     double* hq = shq_.data();
     double h = kInf;
     int which = -1;
@@ -442,30 +522,53 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     // A function at or below zero within round-off but not moving down takes a resolution interval
     // as its step (as in first_root): its proven steps would be far below the resolution.
     const double skip = kResolutionSkip * tau_c_;
-    auto step_of = [&](const Jet& jk, double step) { return jk.f <= 0 ? std::max(step, skip) : step; };
+    auto step_of = [&](double f, double step) { return f <= 0 ? std::max(step, skip) : step; };
+    // The quadratic bound of function k: concave, so positive over [0, H] when positive at H.
+    auto value = [&](int k) { return k < M ? x[k] : d_ - x[k - M]; };
+    auto rate = [&](int k) { return k < M ? xd[k] : -xd[k - M]; };
+    auto quadratic_clear = [&](int k, double H) {
+      const double f = value(k);
+      return f > 0 && f + H * (rate(k) - 0.5 * m2 * H) > 0;
+    };
+    constexpr double kUnknown = -1.0;  // quadratic step not worked out: longer than some step
     for (int k = 0; k < functions; ++k) {
       if (held(k)) {
         hq[k] = kInf;
         continue;
       }
-      const Jet jk = jet_of(k);
-      if (at_root(jk.f, jk.f1, jk.f2, jk.f3)) return {Root::Found, tau, k};
-      hq[k] = step_of(jk, quadratic_step(jk.f, jk.f1, -0.5 * m2));
+      const double f = value(k), f1 = rate(k);
+      if (f <= 0) {
+        const Jet jk = jet_of(k);
+        if (at_root(jk.d[0], jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
+      }
+      if (h < kInf && quadratic_clear(k, h)) {
+        hq[k] = kUnknown;
+        continue;
+      }
+      hq[k] = step_of(f, quadratic_step(f, f1, -0.5 * m2));
       if (hq[k] < h) {
         h = hq[k];
         which = k;
       }
     }
+    Jet jw;
     if (which >= 0) {
-      h = step_of(jet_of(which), safe_step(jet_of(which), kInf));
+      jw = jet_of(which);
+      h = step_of(jw.d[0], safe_step(jw, kInf));
       for (int k = 0; k < functions; ++k) {
-        if (k == which || !(hq[k] < h) || hq[k] == kInf) continue;
+        if (k == which) continue;
+        if (hq[k] == kUnknown) {
+          if (quadratic_clear(k, h)) continue;
+          hq[k] = step_of(value(k), quadratic_step(value(k), rate(k), -0.5 * m2));
+        }
+        if (!(hq[k] < h) || hq[k] == kInf) continue;
         const Jet jk = jet_of(k);
-        if (jk.f > 0 && jk.quartic_positive(h)) continue;  // proven positive over the whole step
-        const double hk = step_of(jk, safe_step(jk, h));
+        if (jk.d[0] > 0 && jk.lower_positive(h)) continue;  // proven positive over the whole step
+        const double hk = step_of(jk.d[0], safe_step(jk, h));
         if (hk < h) {
           h = hk;
           which = k;
+          jw = jk;
         }
       }
     }
@@ -476,8 +579,8 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
     // At zero within round-off, not moving down, and its step raised to the resolution interval:
     // a resolution skip (no root can be bracketed from it: root_upper is infinite when f1 >= 0).
-    if (h == skip && jet_of(which).f <= 0) ++counters_.resolution_skips;
-    if (jet_of(which).root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
+    if (h == skip && jw.d[0] <= 0) ++counters_.resolution_skips;
+    if (jw.root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
     tau += h;
   }
   return {Root::Refresh, tau, 0};

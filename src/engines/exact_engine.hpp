@@ -149,7 +149,8 @@ class ExactEngine final : public Engine {
   mutable ChainState state_;
   mutable bool state_valid_ = false;
   mutable std::vector<double> sx_, sxd_, sv_, sv2_, shq_;  // scratch
-  mutable std::vector<double> sy4_[4], sx4_[4];  // searches: derivatives 0..3 of modes and overlaps
+  mutable std::vector<double> sy4_[4], sx4_[4];  // scratch of the searches and of split
+  mutable std::vector<double> sder_, samp_;     // searches: mode derivatives, scaled amplitudes
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
   struct ModeCache {
