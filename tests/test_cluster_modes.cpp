@@ -2,6 +2,7 @@
 // engine run with a step so small that it has converged.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engines/cluster_modes.hpp"
@@ -68,4 +69,65 @@ TEST(ClusterMotion, SingleParticleFallsFreely) {
   cm.state_at(0.8, z, v);
   EXPECT_NEAR(z[0], 2.0 + 1.5 * 0.8 - 0.5 * 0.64, 1e-15);
   EXPECT_NEAR(v[0], 1.5 - 0.8, 1e-15);
+}
+
+// The exact engine's gap and floor searches rest on this: compression only pulls a cluster's
+// edge particles towards its centre of mass. The mode parts of the bottom and top particle,
+// sum_j bottom_j y_j and -sum_j top_j y_j, equal sum_i x_i (n-1-i)/n and sum_i x_i (i+1)/n, so
+// they are >= 0 whenever every overlap x_i is.
+TEST(ClusterModeTable, EdgeParticlesMoveInwardsUnderCompression) {
+  for (int n : {2, 3, 7, 25}) {
+    const ClusterModeTable tab(n, 1e8, 3000.0);
+    std::vector<double> x(tab.M), y(tab.M);
+    for (int trial = 0; trial < 50; ++trial) {
+      for (int i = 0; i < tab.M; ++i) x[i] = trial == 0 ? (i == 0 ? 1e-6 : 0.0) : 1e-6 * (1.0 + std::sin(7.0 * trial + 3.0 * i));
+      tab.to_modes(x.data(), y.data());
+      double bottom = 0, top = 0, want_bottom = 0, want_top = 0;
+      for (int j = 0; j < tab.M; ++j) {
+        bottom += tab.bottom[j] * y[j];
+        top -= tab.top[j] * y[j];
+      }
+      for (int i = 0; i < tab.M; ++i) {
+        want_bottom += x[i] * (n - 1 - i) / n;
+        want_top += x[i] * (i + 1.0) / n;
+      }
+      EXPECT_NEAR(bottom, want_bottom, 1e-15 * n) << "n=" << n;
+      EXPECT_NEAR(top, want_top, 1e-15 * n) << "n=" << n;
+      EXPECT_GE(bottom, -1e-20);
+      EXPECT_GE(top, -1e-20);
+    }
+  }
+}
+
+// The bounds behind the engine's root-free steps: every derivative of a mode stays within
+// bound[n] * amplitude(state now) at all later times. Checked on a fine grid of later times for
+// under-, critically and over-damped modes, derivatives 0..kTaylorOrder; the underdamped envelope
+// bound omega0^n |C| is reached to within 10 per cent (it is tight up to the damping over half a period), so a looser or a wrong
+// bound would show.
+TEST(ModeConstants, DerivativeBoundsHoldAtAllLaterTimes) {
+  for (double beta : {0.05, 0.6, 2.0, 5.0}) {  // omega0 = 2
+    const ModeConstants mc(beta, 4.0);
+    const double y0 = 0.7, v0 = -1.3;
+    const double amp = mc.amplitude(y0, v0);
+    double worst_ratio[kTaylorOrder + 1] = {};
+    for (int s = 1; s <= 4000; ++s) {
+      const double t = 0.005 * s;
+      double y, yd;
+      mc.evolve(y0, v0, t, y, yd);
+      double ym = y, yn = yd;
+      for (int n = 0; n <= kTaylorOrder; ++n) {
+        const double dn = n == 0 ? y : n == 1 ? yd : mc.acceleration(ym, yn);
+        if (n >= 2) {
+          ym = yn;
+          yn = dn;
+        }
+        const double ratio = std::abs(dn) / (mc.bound[n] * amp);
+        EXPECT_LE(ratio, 1.0 + 1e-12) << "beta=" << beta << " n=" << n << " t=" << t;
+        worst_ratio[n] = std::max(worst_ratio[n], ratio);
+      }
+    }
+    if (mc.kind == ModeKind::Under && beta < 0.1) {
+      for (int n = 0; n <= kTaylorOrder; ++n) EXPECT_GT(worst_ratio[n], 0.9) << "n=" << n;
+    }
+  }
 }

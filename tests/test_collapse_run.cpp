@@ -96,39 +96,47 @@ TEST(CollapseRun, HardSpheresCollapseUnlessTheTcModelIsOn) {
   EXPECT_TRUE(std::isfinite(tc.n_tot_mean));
 }
 
-// Launch 31 of seed 1 at N = 25, e = 0.3, k = 1e8 ends its collapse with a pair (10, 11) whose two
-// sides rest against each other with relative speeds below round-off (~1e-17): it touched and
-// parted every 1e-6 tau_c and the run stopped with "events pile up" after 5 minutes. The pair is
-// now held in contact for geometrically growing times (ExactEngine::merge), and the launch ends.
-// Asserted: the rule acted, the stop rule holds, and momentum, which every contact conserves
-// exactly in the model, is conserved to round-off. About 3 minutes on one core.
-TEST(LongCollapseRun, ChatteringPairIsHeldAndTheLaunchEnds) {
+// Free-space collapses at N = 25, e = 0.3, k = 1e8 can end with a pair whose two sides rest
+// against each other with relative speeds below round-off (~1e-17): such a pair touched and parted
+// every 1e-6 tau_c, and one launch once stopped with "events pile up" after 5 minutes. A pair
+// that keeps grazing is now held in contact for geometrically growing times
+// (ExactEngine::merge). Which launches meet such a pair depends on the last bits of event times,
+// so the test runs launches 0..199 (a few seconds): every one ends (no stall, no error), the
+// rule acts in some of them, and momentum, which every contact conserves exactly in the model,
+// is conserved to round-off in each.
+TEST(CollapseRun, ChatteringPairsAreHeldAndEveryLaunchEnds) {
   CollapseSpec spec;
   spec.params.N = 25;
   spec.params.e = 0.3;
   spec.params.k = 1e8;
   spec.params.g = 0.0;
-  const ChainState initial = collapse_initial_state(spec, 31);
-  auto engine = make_engine(spec.engine, spec.params, initial, nullptr);
-  struct Ends final : EventSink {
-    int open = 0;
-    void on_event(const Event& ev) override {
-      if (ev.kind == EventKind::ContactBegin) ++open;
-      if (ev.kind == EventKind::ContactEnd && --open == 0) request_stop();
+  std::uint64_t held = 0, grazing = 0;
+  for (int launch = 0; launch < 200; ++launch) {
+    const ChainState initial = collapse_initial_state(spec, launch);
+    auto engine = make_engine(spec.engine, spec.params, initial, nullptr);
+    struct Ends final : EventSink {
+      int open = 0;
+      void on_event(const Event& ev) override {
+        if (ev.kind == EventKind::ContactBegin) ++open;
+        if (ev.kind == EventKind::ContactEnd && --open == 0) request_stop();
+      }
+    } sink;
+    for (;;) {
+      sink.clear_stop();
+      engine->advance_to(spec.t_max, sink);
+      ASSERT_TRUE(sink.stop_requested()) << "launch " << launch << ": no end before t_max";
+      if (sink.open == 0 && engine->state().v.back() > engine->state().v.front()) break;
     }
-  } sink;
-  for (;;) {
-    sink.clear_stop();
-    engine->advance_to(spec.t_max, sink);
-    ASSERT_TRUE(sink.stop_requested()) << "no stop before t_max";
-    if (sink.open == 0 && engine->state().v.back() > engine->state().v.front()) break;
+    held += engine->counters().held_contacts;
+    grazing += engine->counters().grazing_contacts;
+    double p0 = 0, p1 = 0, scale = 0;
+    for (int i = 0; i < 25; ++i) {
+      p0 += initial.v[i];
+      p1 += engine->state().v[i];
+      scale += std::abs(initial.v[i]);
+    }
+    EXPECT_NEAR(p1, p0, 1e-12 * scale) << "launch " << launch;
   }
-  EXPECT_GT(engine->counters().held_contacts, 0u);
-  double p0 = 0, p1 = 0, scale = 0;
-  for (int i = 0; i < 25; ++i) {
-    p0 += initial.v[i];
-    p1 += engine->state().v[i];
-    scale += std::abs(initial.v[i]);
-  }
-  EXPECT_NEAR(p1, p0, 1e-12 * scale);
+  EXPECT_GT(grazing, 0u);
+  EXPECT_GT(held, 0u);
 }
