@@ -117,23 +117,6 @@ void ClusterModeTable::to_overlaps(const double* y, double* x) const {
   }
 }
 
-void ClusterModeTable::to_overlaps4(const double* const y[4], double* const x[4]) const {
-  for (int i = 0; i < M; ++i) {
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    const double* row = &S[static_cast<std::size_t>(i) * M];
-    for (int j = 0; j < M; ++j) {
-      s0 += row[j] * y[0][j];
-      s1 += row[j] * y[1][j];
-      s2 += row[j] * y[2][j];
-      s3 += row[j] * y[3][j];
-    }
-    x[0][i] = s0;
-    x[1][i] = s1;
-    x[2][i] = s2;
-    x[3][i] = s3;
-  }
-}
-
 void ClusterModeTable::to_modes(const double* x, double* y) const { to_overlaps(x, y); }  // S = S^T = S^-1
 
 ClusterModeTables::ClusterModeTables(int N, double k_over_m, double D)

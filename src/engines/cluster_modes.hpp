@@ -73,7 +73,6 @@ struct ClusterModeTable {
 
   // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x).
   void to_overlaps(const double* y, double* x) const;
-  void to_overlaps4(const double* const y[4], double* const x[4]) const;  // four vectors in one pass
   void to_modes(const double* x, double* y) const;
 };
 

@@ -176,9 +176,9 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   gap_ua_.assign(n_, 0.0);
   gap_ub_.assign(n_, 0.0);
   for (auto* s : {&sx_, &sxd_, &sv_, &sv2_}) s->assign(n_, 0.0);
-  for (int k = 0; k < 4; ++k) {
-    sy4_[k].assign(n_, 0.0);
-    sx4_[k].assign(n_, 0.0);
+  for (int k = 0; k < 2; ++k) {
+    sy2_[k].assign(n_, 0.0);
+    sx2_[k].assign(n_, 0.0);
   }
   shq_.assign(2 * n_, 0.0);
   sder_.assign(2 * static_cast<std::size_t>(n_), 0.0);
@@ -453,8 +453,8 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
   double* yn = sder_.data();
   double* amp2 = samp_.data();
   double* ampP = samp_.data() + M;
-  double* x = sx4_[0].data();
-  double* xd = sx4_[1].data();
+  double* x = sx2_[0].data();
+  double* xd = sx2_[1].data();
   double tau = search_from_[lo];
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
@@ -698,8 +698,8 @@ void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink)
   // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t).
   double* x = sx_.data();
   double* v = sv_.data();
-  double* y = sy4_[0].data();
-  double* yd = sy4_[1].data();
+  double* y = sy2_[0].data();
+  double* yd = sy2_[1].data();
   modes_at(lo, tau, y, yd);
   cluster_state_local(lo, tau, y, yd, x, sxd_.data(), v);
   const int r = pair - lo;

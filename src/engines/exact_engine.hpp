@@ -8,8 +8,8 @@
 // and time jumps from one event to the next: a gap closing (contact begins), an overlap returning
 // to zero (contact ends: one counted collision), particle 1 reaching the floor. Each event time is
 // the first root of a polynomial of degree <= 2 plus damped modes; it is found by steps that are
-// proven root-free (Taylor lower bounds whose remainders are bounded by the non-increasing mode
-// energies), which converge onto the root to round-off, so no event can be skipped.
+// proven root-free (Taylor lower bounds whose remainders are bounded by the modes' amplitudes, which
+// never grow), which converge onto the root to round-off, so no event can be skipped.
 //
 // Positions are never stored as absolute heights. The engine keeps the gap of every open pair,
 // the overlaps of closed pairs (as mode amplitudes) and the height of particle 1 above the floor,
@@ -112,7 +112,7 @@ class ExactEngine final : public Engine {
   void floor_hit(double t, EventSink& sink);
   void refresh_cluster(int lo, double t);
 
-  // --- schedule: tournament tree over 2N slots (N clusters, N-1 gaps, the floor) ---
+  // --- schedule: 2N slots (N clusters, N-1 gaps, the floor) in an EventQueue ---
   int cluster_slot(int lo) const { return lo; }
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
@@ -149,7 +149,7 @@ class ExactEngine final : public Engine {
   mutable ChainState state_;
   mutable bool state_valid_ = false;
   mutable std::vector<double> sx_, sxd_, sv_, sv2_, shq_;  // scratch
-  mutable std::vector<double> sy4_[4], sx4_[4];  // scratch of the searches and of split
+  mutable std::vector<double> sy2_[2], sx2_[2];  // scratch: modes and rates (split), overlaps and rates (searches)
   mutable std::vector<double> sder_, samp_;     // searches: mode derivatives, scaled amplitudes
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
