@@ -60,7 +60,6 @@ const TaylorTables kTaylor;
 struct Jet {
   double d[P];  // f, f', ..., f^(P-1) at s
   double p2 = 0, m2 = 0, mP = 0;
-  double f() const { return d[0]; }
   // The order-P lower bound and its slope.
   double lower(double h) const {
     double v = -mP * kTaylor.inv_fact[P];
@@ -181,7 +180,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     sx2_[k].assign(n_, 0.0);
   }
   shq_.assign(2 * n_, 0.0);
-  sder_.assign(2 * static_cast<std::size_t>(n_), 0.0);
+  smode_.assign(2 * static_cast<std::size_t>(n_), 0.0);
   samp_.assign(2 * n_, 0.0);
 
   // Clusters: maximal runs of overlapping neighbours.
@@ -450,7 +449,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
   const int M = tab.M;
   // Modes and their rates (yn, yn + M), the amplitudes times bound[2] and bound[P], and the
   // overlaps and their rates (x = S y).
-  double* yn = sder_.data();
+  double* yn = smode_.data();
   double* amp2 = samp_.data();
   double* ampP = samp_.data() + M;
   double* x = sx2_[0].data();

@@ -150,7 +150,7 @@ class ExactEngine final : public Engine {
   mutable bool state_valid_ = false;
   mutable std::vector<double> sx_, sxd_, sv_, sv2_, shq_;  // scratch
   mutable std::vector<double> sy2_[2], sx2_[2];  // scratch: modes and rates (split), overlaps and rates (searches)
-  mutable std::vector<double> sder_, samp_;     // searches: mode derivatives, scaled amplitudes
+  mutable std::vector<double> smode_, samp_;    // searches: modes and rates, scaled amplitudes
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
   struct ModeCache {
