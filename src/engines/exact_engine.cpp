@@ -170,6 +170,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   cache_.yd.assign(n_, 0.0);
   y0_.assign(n_, 0.0);
   yd0_.assign(n_, 0.0);
+  amp0_.assign(n_, 0.0);
   gap_s_.assign(n_, 0.0);
   gap_t_.assign(n_, t);
   gap_ua_.assign(n_, 0.0);
@@ -241,6 +242,12 @@ void ExactEngine::form_cluster(int lo, int hi, double t, const double* x, const 
     for (int i = 0; i + 1 < n; ++i) xd[i] = v[i] - v[i + 1];  // x_i' = v_i - v_{i+1}
     tab.to_modes(x, &y0_[lo]);
     tab.to_modes(xd, &yd0_[lo]);
+    // sqrt(E_j) / omega0_j >= |y_j| at all later times (the energy never grows).
+    for (int j = 0; j < tab.M; ++j) {
+      const ModeConstants& mc = tab.modes[j];
+      const double y = y0_[lo + j], yd = yd0_[lo + j];
+      amp0_[lo + j] = std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
+    }
   }
 }
 
@@ -310,7 +317,7 @@ double ExactEngine::edge_u(int lo, bool top, double t) const {
 
 ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, double t) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
-  return EdgeTerm{&tab, &y0_[lo], &yd0_[lo], top ? tab.top.data() : tab.bottom.data(), sign, t - t0_[lo]};
+  return EdgeTerm{&tab, &y0_[lo], &yd0_[lo], &amp0_[lo], top ? tab.top.data() : tab.bottom.data(), sign, t - t0_[lo]};
 }
 
 // ----------------------------------------------------------------------------------------------
@@ -371,11 +378,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     double reach = 0.0;  // sum_j |a_j| sqrt(E_j) / omega0_j >= |mode part| at all later times
     for (int k = 0; k < fn.terms; ++k) {
       const EdgeTerm& term = fn.term[k];
-      for (int j = 0; j < term.table->M; ++j) {
-        const ModeConstants& mc = term.table->modes[j];
-        const double y = term.y0[j], yd = term.yd0[j];
-        reach += std::abs(term.coef[j]) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
-      }
+      for (int j = 0; j < term.table->M; ++j) reach += std::abs(term.coef[j]) * term.amp0[j];
     }
     const double lower0 = fn.c0 - 1e-10 * reach;
     if (lower0 > 0) {
@@ -604,11 +607,7 @@ void ExactEngine::predict_cluster(int lo) {
   const ClusterModeTable& tab = tables_[n];
   // Largest overlap any later time can reach: |x_i| <= sqrt(2/n) sum_j sqrt(E_j) / omega0_j.
   double reach = 0.0;
-  for (int j = 0; j < tab.M; ++j) {
-    const ModeConstants& mc = tab.modes[j];
-    const double y = y0_[lo + j], yd = yd0_[lo + j];
-    reach += std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
-  }
+  for (int j = 0; j < tab.M; ++j) reach += amp0_[lo + j];
   const bool watch = tab.s_max * reach >= d_;
   const double t0 = t0_[lo];
   if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {

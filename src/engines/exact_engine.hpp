@@ -64,6 +64,7 @@ class ExactEngine final : public Engine {
     const ClusterModeTable* table;
     const double* y0;
     const double* yd0;
+    const double* amp0;  // sqrt(E_j) / omega0_j at formation
     const double* coef;
     double sign;
     double tau0;
@@ -135,6 +136,7 @@ class ExactEngine final : public Engine {
   std::vector<std::uint64_t> generation_;  // distinct for every formation (mode-cache key)
   std::uint64_t formations_ = 0;
   std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1
+  std::vector<double> amp0_;       // sqrt(E_j) / omega0_j at formation (bounds |y_j| from then on)
   std::vector<double> gap_s_, gap_t_, gap_ua_, gap_ub_;  // open pair i: gap at gap_t_, edge u's then
   double floor_s_ = 0, floor_t_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
 
