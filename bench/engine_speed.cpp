@@ -54,9 +54,11 @@ Timing time_run(const Workload& w, const std::string& engine, double T, std::uin
 }
 
 // The engine alone (no sampling, no observers): wall time and root-search steps per reported
-// collision event.
+// collision event, and its counters (the same in every repeat: the run is deterministic).
 struct EngineOnly {
   double ns = 0, search_steps = 0;
+  EngineCounters counters;
+  double collisions = 0;
   double wall_time() const { return ns; }
 };
 EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
@@ -71,7 +73,7 @@ EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const EngineCounters c = engine->counters();
   const double collisions = static_cast<double>(c.contact_ends + c.floor_hits);
-  return {1e9 * wall / collisions, static_cast<double>(c.search_steps) / collisions};
+  return {1e9 * wall / collisions, static_cast<double>(c.search_steps) / collisions, c, collisions};
 }
 
 }  // namespace
@@ -106,10 +108,12 @@ int main(int argc, char** argv) {
   fmt::print("{:>6} {:>5} {:>5} | {:>14} {:>9} {:>9} {:>11} {:>12} | {:>10} {:>12} {:>12} | {:>8}\n", "k", "e",
              "T", "n_coll (exact)", "exact s", "ns/coll", "engine-only", "search/coll", "ref s", "ref source",
              "steps/coll", "ratio");
+  std::vector<EngineOnly> work;  // per workload, for the table of prediction work
   for (const Workload& w : workloads) {
     const Timing ex = fastest([&] { return time_run(w, "exact", w.T, seed); });
     const double ns_per_collision = 1e9 * ex.wall / static_cast<double>(ex.events);
     const EngineOnly engine = fastest([&] { return engine_only_per_collision(w, seed); });
+    work.push_back(engine);
     // The reference at k = 1e10 (and everywhere with --quick): a short run, its wall time scaled
     // by simulated time (its cost is a fixed number of steps per unit time).
     const bool extrapolate = quick || w.k > 1e8;
@@ -130,5 +134,24 @@ int main(int argc, char** argv) {
       "floor hit, transient included);\nengine-only: the same without sampling or observers; search/coll: root-free "
       "steps of the exact engine's event searches per collision event; steps/coll: "
       "reference steps per collision event; ratio: reference s / exact s.\n");
+  // Where the exact engine's prediction work goes (engine-only runs; deterministic counts).
+  fmt::print("\nexact engine's event predictions per collision event (engine-only runs):\n");
+  fmt::print("{:>6} {:>5} | {:>11} {:>9} | {:>15} {:>10} | {:>15} {:>10}\n", "k", "e", "closed form", "bound",
+             "cluster search", "steps each", "gap/floor search", "steps each");
+  for (std::size_t i = 0; i < workloads.size(); ++i) {
+    const EngineCounters& c = work[i].counters;
+    const double per = 1.0 / work[i].collisions;
+    const double edge_steps = static_cast<double>(c.search_steps - c.cluster_search_steps);
+    auto ratio = [](double a, std::uint64_t b) { return b > 0 ? fmt::format("{:.2f}", a / static_cast<double>(b)) : "-"; };
+    fmt::print("{:>6.0e} {:>5} | {:>11.2f} {:>9.2f} | {:>15.2f} {:>10} | {:>15.2f} {:>10}\n", workloads[i].k,
+               workloads[i].e, per * static_cast<double>(c.closed_form_predictions),
+               per * static_cast<double>(c.bound_exclusions), per * static_cast<double>(c.cluster_searches),
+               ratio(static_cast<double>(c.cluster_search_steps), c.cluster_searches),
+               per * static_cast<double>(c.edge_searches), ratio(edge_steps, c.edge_searches));
+  }
+  fmt::print(
+      "closed form: a pair's contact end, two free particles, a free particle over the floor; bound: ruled out by "
+      "the gap's lower bound with no step;\ncluster search: a cluster's contact ends searched step by step; gap/floor "
+      "search: a gap or the floor height next to a cluster, step by step.\n");
   return 0;
 }

@@ -16,6 +16,15 @@ struct EngineCounters {
   std::uint64_t contact_ends = 0;  // all contact ends since the start, transient included
   std::uint64_t floor_hits = 0;    // all floor hits since the start, transient included
   std::uint64_t search_steps = 0;  // event-driven engines: root-free steps of the event searches
+  // Exact engine, where the prediction work goes: event predictions solved in closed form (a pair's
+  // contact end, two free particles, a free particle over the floor), those a lower bound ruled
+  // out with no step (a gap or floor height next to a cluster, first_root), and those searched
+  // step by step: a cluster's contact ends (their steps counted apart) or a gap or floor height.
+  std::uint64_t closed_form_predictions = 0;
+  std::uint64_t bound_exclusions = 0;
+  std::uint64_t cluster_searches = 0;
+  std::uint64_t cluster_search_steps = 0;
+  std::uint64_t edge_searches = 0;
   // Exact engine, events below its resolution: contacts that began with an approach speed below
   // 1e-13 of the particles' speeds, and steps of 1e-6 tau_c taken over a function touching zero
   // within round-off (both occur only where relative motion has decayed below round-off).

@@ -365,6 +365,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 < 0))
                          ? 0.0
                          : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
+    ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
   double sigma = 0.0, amplitude = 0.0;
@@ -383,9 +384,13 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     const double lower0 = fn.c0 - 1e-10 * reach;
     if (lower0 > 0) {
       sigma = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
-      if (sigma >= sigma_max) return {Root::None, sigma_max, 0};
+      if (sigma >= sigma_max) {
+        ++counters_.bound_exclusions;
+        return {Root::None, sigma_max, 0};
+      }
     }
   }
+  ++counters_.edge_searches;
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
     Jet jet;
@@ -612,10 +617,14 @@ void ExactEngine::predict_cluster(int lo) {
   const double t0 = t0_[lo];
   if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {
     const double tau = pair_contact_end(lo);
+    ++counters_.closed_form_predictions;
     set_slot(cluster_slot(lo), t0 + tau, SlotKind::ContactEnd, lo, tau);
     return;
   }
+  const std::uint64_t steps_before = counters_.search_steps;
   const Root r = first_internal_root(lo, watch);
+  ++counters_.cluster_searches;
+  counters_.cluster_search_steps += counters_.search_steps - steps_before;
   switch (r.kind) {
     case Root::Found:
       if (r.which >= tab.M) {
