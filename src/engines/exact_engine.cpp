@@ -368,27 +368,28 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
-  double sigma = 0.0, amplitude = 0.0;
-  // Compression only pulls a cluster's edge particle towards its centre of mass: the mode part
-  // of a gap or of the floor height is a non-negative combination of the cluster's overlaps
-  // (predict_gap), and every overlap stays >= 0 until the cluster's own next event, which bounds
-  // sigma_max. So f(s) >= c0 + c1 s + p2 s^2 / 2 with no mode evaluated: no root before that
-  // parabola's first root. The margin covers overlaps of round-off size below zero (resolution
-  // skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of the mode amplitudes.
-  if (fn.modes_nonnegative) {
-    double reach = 0.0;  // sum_j |a_j| sqrt(E_j) / omega0_j >= |mode part| at all later times
-    for (int k = 0; k < fn.terms; ++k) {
-      const EdgeTerm& term = fn.term[k];
-      for (int j = 0; j < term.table->M; ++j) reach += std::abs(term.coef[j]) * term.amp0[j];
+  // The mode part W(s) of f never exceeds reach = sum_j |a_j| sqrt(E_j) / omega0_j in size (each
+  // mode's energy never grows), so f(s) >= c0 - reach + c1 s + p2 s^2 / 2: no root before that
+  // parabola's first root. Better still, compression only pulls a cluster's edge particle towards
+  // its centre of mass: when no pair is held, W is a non-negative combination of the cluster's
+  // overlaps (predict_gap), and every overlap stays >= 0 until the cluster's own next event, which
+  // bounds sigma_max; then W >= 0 up to a margin for overlaps of round-off size below zero
+  // (resolution skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of reach.
+  // Either way no mode is evaluated, and most gaps next to a cluster end here.
+  double reach = 0.0;
+  for (int k = 0; k < fn.terms; ++k) {
+    const EdgeTerm& term = fn.term[k];
+    for (int j = 0; j < term.table->M; ++j) reach += std::abs(term.coef[j]) * term.amp0[j];
+  }
+  double sigma = 0.0;
+  const double lower0 = fn.c0 - (fn.modes_nonnegative ? 1e-10 : 1.0) * reach;
+  if (lower0 > 0) {
+    const double clear = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
+    if (clear >= sigma_max) {
+      ++counters_.bound_exclusions;
+      return {Root::None, sigma_max, 0};
     }
-    const double lower0 = fn.c0 - 1e-10 * reach;
-    if (lower0 > 0) {
-      sigma = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
-      if (sigma >= sigma_max) {
-        ++counters_.bound_exclusions;
-        return {Root::None, sigma_max, 0};
-      }
-    }
+    sigma = clear;
   }
   ++counters_.edge_searches;
   for (int it = 0; it < kMaxIterations; ++it) {
@@ -420,17 +421,9 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         const double amp = std::abs(a) * mc.amplitude(y, yd);
         jet.m2 += mc.bound[2] * amp;
         jet.mP += mc.bound[P] * amp;
-        if (it == 0) amplitude += std::abs(a) * std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
       }
     }
     if (at_root(jet.d[0], jet.d[1], jet.d[2], jet.d[3])) return {Root::Found, sigma, 0};
-    // Quick exclusion: every mode obeys |y| <= sqrt(E)/omega0 at all later times, so
-    // f(s) >= f(0) - 2A + c1 s + p2 s^2/2 with A = sum |a_j| sqrt(E_j)/omega0_j. If that parabola
-    // stays positive up to sigma_max there is no root (most gaps next to a short contact).
-    if (it == 0) {
-      const double lower0 = jet.d[0] - 2.0 * amplitude;
-      if (lower0 > 0 && quadratic_step(lower0, fn.c1, 0.5 * fn.p2) >= sigma_max) return {Root::None, sigma_max, 0};
-    }
     const double cap = sigma_max - sigma;
     double h = safe_step(jet, cap);
     // At or below zero within round-off but not moving down (a function leaving zero, or touching
