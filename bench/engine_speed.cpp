@@ -6,6 +6,7 @@
 //   build/bench/engine_speed            # full: the k = 1e8 reference runs take ~10 s each
 //   build/bench/engine_speed --quick    # every reference time extrapolated from a short run
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fmt/format.h>
@@ -84,12 +85,23 @@ int main(int argc, char** argv) {
   double short_T = 1.0;
   std::uint64_t seed = 1;
   app.add_flag("--quick", quick, "extrapolate every reference time from a short run");
-  app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation")->check(CLI::PositiveNumber);
+  app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation (> 0)");
   app.add_option("--seed", seed, "base seed");
   int repeat = 3;
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
-  CLI11_PARSE(app, argc, argv);
+  // Bad input: one line naming the parameter and its valid range, exit code 2 (as granchain does).
+  try {
+    app.parse(argc, argv);
+    if (!(short_T > 0)) throw CLI::ValidationError("--short-T", fmt::format("must be > 0, got {}", short_T));
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string msg = e.what();
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    fmt::print(stderr, "engine_speed: error: {} (see engine_speed --help)\n", msg);
+    return 2;
+  }
   // Wall times on a shared machine vary by tens of per cent between invocations; the fastest of
   // a few identical runs is the least disturbed measurement.
   auto fastest = [repeat](auto run) {
