@@ -4,8 +4,8 @@
 set -euo pipefail
 
 packages=(
-  g++ cmake make git ca-certificates
-  libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3
+  g++ cmake make pkg-config git ca-certificates
+  libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3 libfftw3-dev
   libgtest-dev libgmock-dev
   libopenmpi-dev openmpi-bin
   python3-numpy python3-scipy python3-matplotlib

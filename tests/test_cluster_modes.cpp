@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engines/cluster_modes.hpp"
+#include "engines/exact/cluster_modes.hpp"
+#include "engines/exact/sine_transform.hpp"
 #include "engines/runge_kutta_engine.hpp"
 #include "test_helpers.hpp"
 
@@ -61,6 +62,8 @@ TEST(ClusterMotion, MatchesConvergedReferenceEngine) {
   compare_cluster(4, 0.5);
   compare_cluster(7, 0.9);
   compare_cluster(5, 0.01);  // e < exp(-pi): the upper modes are overdamped
+  compare_cluster(60, 0.5);  // large clusters project through FFTW's sine transform
+  compare_cluster(100, 0.05);
 }
 
 TEST(ClusterMotion, SingleParticleFallsFreely) {
@@ -130,4 +133,36 @@ TEST(ModeConstants, DerivativeBoundsHoldAtAllLaterTimes) {
       for (int n = 0; n <= kTaylorOrder; ++n) EXPECT_GT(worst_ratio[n], 0.9) << "n=" << n;
     }
   }
+}
+
+// FFTW's type-I sine transform against the dense product sum_j S_ij y_j in long double, for sizes
+// on both sides of the engine's switch (SineTransform::pays_off) and with n = M + 1 prime (FFTW's
+// slowest case), and its own inverse. Round-off: a few ulps of sum_j |S_ij y_j| per O(log n)
+// pass of the transform; 1e-14 of the largest such sum leaves room for that and fails on any
+// wrong index or scale.
+TEST(SineTransform, EqualsTheDenseSineProductAndIsItsOwnInverse) {
+  for (int M : {1, 2, 7, 47, 48, 63, 72, 99, 148, 149}) {
+    const int n = M + 1;
+    const SineTransform dst(M);
+    std::vector<double> y(M), x(M), back(M);
+    for (int j = 0; j < M; ++j) y[j] = std::sin(1.7 * j + 0.3) * (j % 3 == 0 ? 1e-3 : 1.0);
+    dst.apply(y.data(), x.data());
+    double scale = 0.0, worst = 0.0;
+    for (int i = 0; i < M; ++i) {
+      long double sum = 0.0L, abs_sum = 0.0L;
+      for (int j = 0; j < M; ++j) {
+        const long double term = std::sqrt(2.0L / n) * std::sin((i + 1.0L) * (j + 1.0L) * 3.141592653589793238462643383279L / n) * y[j];
+        sum += term;
+        abs_sum += std::fabs(term);
+      }
+      scale = std::max(scale, static_cast<double>(abs_sum));
+      worst = std::max(worst, std::abs(x[i] - static_cast<double>(sum)));
+    }
+    EXPECT_LE(worst, 1e-14 * scale) << "M=" << M;
+    dst.apply(x.data(), back.data());
+    for (int j = 0; j < M; ++j) EXPECT_NEAR(back[j], y[j], 1e-14) << "M=" << M << " j=" << j;
+  }
+  // The switch: clusters of 32 particles and more (smaller ones keep the dense product).
+  EXPECT_NE(ClusterModeTable(150, 1e6, 100.0).transform, nullptr);
+  EXPECT_EQ(ClusterModeTable(25, 1e6, 100.0).transform, nullptr);
 }

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "engines/exact_engine.hpp"
+#include "engines/exact/exact_engine.hpp"
 #include "model/chain_parameters.hpp"
 #include "test_helpers.hpp"
 #include "theory/collapse_theory.hpp"

@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "engines/engine_factory.hpp"
-#include "engines/exact_engine.hpp"
+#include "engines/exact/exact_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 #include "model/driven_column.hpp"
 #include "model/random.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engines/exact_engine.hpp"
+#include "engines/exact/exact_engine.hpp"
 #include "engines/hard_sphere_engine.hpp"
 #include "model/collapse_setups.hpp"
 #include "model/random.hpp"

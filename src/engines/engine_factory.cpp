@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "engines/exact_engine.hpp"
+#include "engines/exact/exact_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 
 namespace granchain {

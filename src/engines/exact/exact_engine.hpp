@@ -16,9 +16,10 @@
 // each as a value at a reference time plus displacements since then, so an overlap of 1e-7 d at
 // k = 1e12 keeps its full relative precision.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
-#include "engines/cluster_modes.hpp"
+#include "engines/exact/cluster_modes.hpp"
 #include "engines/engine.hpp"
 #include "engines/event_queue.hpp"
 #include "model/chain_parameters.hpp"
@@ -45,6 +46,16 @@ class ExactEngine final : public Engine {
   std::vector<double> overlaps() const;
 
  private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  // Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
+  // last proven-safe time, where the search starts again (no physics happens at a refresh).
+  static constexpr int kMaxIterations = 400;
+  // Below this fraction of tau_c the engine does not resolve a function that touches zero within
+  // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
+  static constexpr double kResolutionSkip = 1e-6;
+  // Events allowed at one and the same instant before the engine declares itself stuck.
+  static constexpr std::uint64_t kMaxSameTimeEvents = 1000000;
+
   enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
   struct Slot {
     double t;
@@ -152,7 +163,7 @@ class ExactEngine final : public Engine {
   mutable bool state_valid_ = false;
   mutable std::vector<double> sx_, sxd_, sv_, sv2_, shq_;  // scratch
   mutable std::vector<double> sy2_[2], sx2_[2];  // scratch: modes and rates (split), overlaps and rates (searches)
-  mutable std::vector<double> smode_, samp_;    // searches: modes and rates, scaled amplitudes
+  mutable std::vector<double> smode_, samp_;    // searches: modes and derivatives, scaled amplitudes
   // The modes of one cluster at one time, kept because an event evaluates the same cluster at
   // the same instant several times (gaps below and above, floor, state).
   struct ModeCache {

@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "engines/exact/sine_transform.hpp"
+
 namespace granchain {
 
 enum class ModeKind : unsigned char { Under, Critical, Over };
@@ -71,7 +73,11 @@ struct ClusterModeTable {
   std::vector<double> bottom, top;   // z_1 - z_com and z_n - z_com per unit y_j (constant part aside)
   double s_max = 0;                  // sqrt(2/n) >= |S_ij|
 
-  // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x).
+  // FFTW's sine transform for large clusters (SineTransform::pays_off), else null.
+  std::unique_ptr<SineTransform> transform;
+
+  // Overlaps and their rates from modes (x = S y) and modes from overlaps (y = S^T x = S x):
+  // the sine transform where it pays off, else the dense product in a fixed order.
   void to_overlaps(const double* y, double* x) const;
   void to_modes(const double* x, double* y) const;
 };

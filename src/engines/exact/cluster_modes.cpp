@@ -1,4 +1,4 @@
-#include "engines/cluster_modes.hpp"
+#include "engines/exact/cluster_modes.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -97,6 +97,7 @@ ClusterModeTable::ClusterModeTable(int n_, double k_over_m, double D) : n(n_), M
     modes.emplace_back(0.5 * D * lambda, k_over_m * lambda);
     for (int i = 0; i < M; ++i) S[i * M + j] = s_max * std::sin((i + 1) * (j + 1) * std::numbers::pi / n);
   }
+  if (SineTransform::pays_off(M)) transform = std::make_unique<SineTransform>(M);
   abs_S.resize(S.size());
   for (std::size_t q = 0; q < S.size(); ++q) abs_S[q] = std::abs(S[q]);
   // z_p - z_com = const + sum_i x_i [ (n-1-i)/n - [i < p] ]  (z_{i+1} = z_i + d - x_i).
@@ -108,12 +109,20 @@ ClusterModeTable::ClusterModeTable(int n_, double k_over_m, double D) : n(n_), M
   }
 }
 
-void ClusterModeTable::to_overlaps(const double* y, double* x) const {
-  for (int i = 0; i < M; ++i) {
-    double sum = 0.0;
-    const double* row = &S[static_cast<std::size_t>(i) * M];
-    for (int j = 0; j < M; ++j) sum += row[j] * y[j];
-    x[i] = sum;
+// x = S y column by column (S is symmetric, so column j is row j): each x_i still sums
+// S_i0 y_0 + S_i1 y_1 + ... in that order, but the additions into different x_i are independent,
+// so the product runs at the adder's throughput instead of the latency of one chain per row.
+void ClusterModeTable::to_overlaps(const double* __restrict y, double* __restrict x) const {
+  if (transform) {
+    transform->apply(y, x);
+    return;
+  }
+  const double* __restrict s = S.data();
+  for (int i = 0; i < M; ++i) x[i] = 0.0;
+  for (int j = 0; j < M; ++j) {
+    const double yj = y[j];
+    const double* __restrict col = s + static_cast<std::size_t>(j) * M;
+    for (int i = 0; i < M; ++i) x[i] += col[i] * yj;
   }
 }
 

@@ -1,0 +1,62 @@
+// Projection of a cluster's modes onto its overlaps, x = S y: the dense product against FFTW's
+// type-I sine transform, per cluster size, in one invocation. This is the measurement behind
+// SineTransform::pays_off (src/engines/exact/sine_transform.hpp).
+//
+//   build/bench/transform_speed [--repeat R]
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <vector>
+
+#include "engines/exact/cluster_modes.hpp"
+#include "engines/exact/sine_transform.hpp"
+
+using namespace granchain;
+
+int main(int argc, char** argv) {
+  CLI::App app{"granchain: dense sine product against FFTW's sine transform, ns per projection"};
+  int repeat = 5;
+  app.add_option("--repeat", repeat, "time every size this many times and keep the fastest")->check(CLI::Range(1, 100));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string msg = e.what();
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    fmt::print(stderr, "transform_speed: error: {} (see transform_speed --help)\n", msg);
+    return 2;
+  }
+  fmt::print("{:>5} {:>5} {:>10} {:>10} {:>7}  {}\n", "n", "M", "dense ns", "FFTW ns", "ratio", "engine uses");
+  for (int n : {8, 16, 24, 25, 31, 32, 37, 48, 64, 73, 100, 101, 128, 149, 150}) {
+    ClusterModeTable table(n, 1e8, 3000.0);
+    const int M = table.M;
+    table.transform.reset();  // the dense product
+    const SineTransform fast(M);
+    std::vector<double> y(M), x(M);
+    for (int j = 0; j < M; ++j) y[j] = std::sin(1.3 * j + 0.2);
+    const int calls = std::max(200, 4000000 / (M * M));
+    double sink = 0;
+    auto time = [&](auto project) {
+      double best = 1e300;
+      for (int r = 0; r < repeat; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int c = 0; c < calls; ++c) {
+          y[c % M] += 1e-12;
+          project();
+          sink += x[M / 2];
+        }
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls);
+      }
+      return 1e9 * best;
+    };
+    const double dense = time([&] { table.to_overlaps(y.data(), x.data()); });
+    const double fftw = time([&] { fast.apply(y.data(), x.data()); });
+    fmt::print("{:>5} {:>5} {:>10.0f} {:>10.0f} {:>7.2f}  {}{}\n", n, M, dense, fftw, dense / fftw,
+               SineTransform::pays_off(M) ? "FFTW" : "dense", sink == 0.123 ? " " : "");
+  }
+  fmt::print("ratio: dense / FFTW (above 1: the transform is faster). Fastest of {} timings per size.\n", repeat);
+  return 0;
+}

@@ -1,0 +1,358 @@
+// The exact engine's event predictions: each event time is the first root of a watched function
+// (an overlap, a gap, the floor height), found by root-free steps proven with the Taylor bounds of
+// taylor_bounds.hpp, or in closed form where the motion allows it.
+#include "engines/exact/exact_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "engines/exact/taylor_bounds.hpp"
+
+namespace granchain {
+
+using taylor::Jet;
+using taylor::at_root;
+using taylor::quadratic_step;
+using taylor::safe_step;
+using taylor::P;
+
+// ----------------------------------------------------------------------------------------------
+// Prediction
+
+ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
+  if (fn.terms == 0) {  // free flight: a line or a parabola, solved in closed form
+    // A gap that is zero with no relative velocity and no relative acceleration (two free spheres
+    // touching at equal velocities, in free space) stays zero: no force acts, no contact begins.
+    const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 < 0))
+                         ? 0.0
+                         : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
+    ++counters_.closed_form_predictions;
+    return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
+  }
+  // The mode part W(s) of f never exceeds reach = sum_j |a_j| sqrt(E_j) / omega0_j in size (each
+  // mode's energy never grows), so f(s) >= c0 - reach + c1 s + p2 s^2 / 2: no root before that
+  // parabola's first root. Better still, compression only pulls a cluster's edge particle towards
+  // its centre of mass: when no pair is held, W is a non-negative combination of the cluster's
+  // overlaps (predict_gap), and every overlap stays >= 0 until the cluster's own next event, which
+  // bounds sigma_max; then W >= 0 up to a margin for overlaps of round-off size below zero
+  // (resolution skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of reach.
+  // Either way no mode is evaluated, and most gaps next to a cluster end here.
+  double reach = 0.0;
+  for (int k = 0; k < fn.terms; ++k) {
+    const EdgeTerm& term = fn.term[k];
+    for (int j = 0; j < term.table->M; ++j) reach += std::abs(term.coef[j]) * term.amp0[j];
+  }
+  double sigma = 0.0;
+  const double lower0 = fn.c0 - (fn.modes_nonnegative ? 1e-10 : 1.0) * reach;
+  if (lower0 > 0) {
+    const double clear = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
+    if (clear >= sigma_max) {
+      ++counters_.bound_exclusions;
+      return {Root::None, sigma_max, 0};
+    }
+    sigma = clear;
+  }
+  ++counters_.edge_searches;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    ++counters_.search_steps;
+    Jet jet;
+    jet.d[0] = fn.c0 + sigma * (fn.c1 + 0.5 * fn.p2 * sigma);
+    jet.d[1] = fn.c1 + fn.p2 * sigma;
+    jet.d[2] = fn.p2;
+    for (int n = 3; n < P; ++n) jet.d[n] = 0.0;
+    jet.p2 = fn.p2;
+    for (int k = 0; k < fn.terms; ++k) {
+      const EdgeTerm& term = fn.term[k];
+      const double tau = term.tau0 + sigma;
+      for (int j = 0; j < term.table->M; ++j) {
+        const ModeConstants& mc = term.table->modes[j];
+        double y, yd;
+        mc.evolve(term.y0[j], term.yd0[j], tau, y, yd);
+        const double a = term.sign * term.coef[j];
+        // Derivatives 0 .. P-1 of a y_j by the mode's own equation.
+        double ym = y, yn = yd;
+        jet.d[0] += a * y;
+        jet.d[1] += a * yd;
+        for (int n = 2; n < P; ++n) {
+          const double next = mc.acceleration(ym, yn);
+          jet.d[n] += a * next;
+          ym = yn;
+          yn = next;
+        }
+        const double amp = std::abs(a) * mc.amplitude(y, yd);
+        jet.m2 += mc.bound[2] * amp;
+        jet.mP += mc.bound[P] * amp;
+      }
+    }
+    if (at_root(jet.d[0], jet.d[1], jet.d[2], jet.d[3])) return {Root::Found, sigma, 0};
+    const double cap = sigma_max - sigma;
+    double h = safe_step(jet, cap);
+    // At or below zero within round-off but not moving down (a function leaving zero, or touching
+    // it from below): the bound measures from zero, so the proven steps would be ~ 2 f1 / m2, far
+    // below the resolution when f1 is a grazing speed, and f would need ~ (skip / step)^2 of them
+    // to rise clear. Step over a resolution interval instead; a root within it would be a contact
+    // or gap shorter than kResolutionSkip tau_c, which the engine does not resolve.
+    if (jet.d[0] <= 0 && h < kResolutionSkip * tau_c_) {
+      h = std::min(cap, kResolutionSkip * tau_c_);
+      ++counters_.resolution_skips;
+    }
+    if (h >= cap) return {Root::None, sigma_max, 0};
+    // Converged: the root lies in (sigma + h, sigma + root_upper], an interval of round-off size.
+    if (jet.root_upper() - h <= 1e-15 * (sigma + tau_c_)) return {Root::Found, sigma + h, 0};
+    sigma += h;
+  }
+  return {Root::Refresh, sigma, 0};
+}
+
+// First time an overlap of the cluster returns to zero (which = pair within the cluster) or, when
+// watch_pass_through, first time an overlap reaches d (which = M + pair).
+ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_through) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  const int M = tab.M;
+  // Modes and their derivatives 0 .. P-1 (row n of yn), the amplitudes times bound[2] and
+  // bound[P], and the overlaps and their rates (x = S y).
+  double* yn = smode_.data();
+  double* amp2 = samp_.data();
+  double* ampP = samp_.data() + M;
+  double* x = sx2_[0].data();
+  double* xd = sx2_[1].data();
+  double tau = search_from_[lo];
+  for (int it = 0; it < kMaxIterations; ++it) {
+    ++counters_.search_steps;
+    double sum2 = 0.0;
+    for (int j = 0; j < M; ++j) {
+      const ModeConstants& mc = tab.modes[j];
+      double y, yd;
+      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y, yd);
+      yn[j] = y;
+      yn[M + j] = yd;
+      // Derivatives 2 .. P-1 of mode j by its own equation (rows 2 .. P-1 of yn).
+      double ym = y, yc = yd;
+      for (int n = 2; n < P; ++n) {
+        const double next = mc.acceleration(ym, yc);
+        yn[n * M + j] = next;
+        ym = yc;
+        yc = next;
+      }
+      const double amp = mc.amplitude(y, yd);
+      amp2[j] = mc.bound[2] * amp;
+      ampP[j] = mc.bound[P] * amp;
+      sum2 += amp2[j];
+    }
+    const double m2 = tab.s_max * sum2;  // >= |x_i''| for every i (|S_ij| <= sqrt(2/n))
+    tab.to_overlaps(yn, x);
+    tab.to_overlaps(yn + M, xd);
+    // Function k < M is overlap k; k >= M (when watched) is d - overlap (k - M). Its full jet:
+    // higher derivatives and remainder bounds from its own row of S.
+    const int functions = watch_pass_through ? 2 * M : M;
+    auto jet_of = [&](int k) {
+      const int i = k < M ? k : k - M;
+      const double sign = k < M ? 1.0 : -1.0;
+      const double* row = &tab.S[static_cast<std::size_t>(i) * M];
+      const double* abs_row = &tab.abs_S[static_cast<std::size_t>(i) * M];
+      Jet jk;
+      jk.d[0] = k < M ? x[i] : d_ - x[i];
+      jk.d[1] = sign * xd[i];
+      static_assert(P == 6, "the overlap jet below is written out for derivatives 2 .. 5");
+      const double *y2 = yn + 2 * M, *y3 = yn + 3 * M, *y4 = yn + 4 * M, *y5 = yn + 5 * M;
+      double s2 = 0.0, s3 = 0.0, s4 = 0.0, s5 = 0.0, b2 = 0.0, bP = 0.0;  // six independent sums
+      for (int j = 0; j < M; ++j) {
+        s2 += row[j] * y2[j];
+        s3 += row[j] * y3[j];
+        s4 += row[j] * y4[j];
+        s5 += row[j] * y5[j];
+        b2 += abs_row[j] * amp2[j];
+        bP += abs_row[j] * ampP[j];
+      }
+      jk.d[2] = sign * s2;
+      jk.d[3] = sign * s3;
+      jk.d[4] = sign * s4;
+      jk.d[5] = sign * s5;
+      jk.m2 = b2;
+      jk.mP = bP;
+      return jk;
+    };
+    // Quadratic steps first (cheap, from x and x' with the common m2); the full bound can only
+    // lengthen a step, so it is worked out only for functions whose quadratic step is shorter
+    // than the best step so far.
+    double* hq = shq_.data();
+    double h = kInf;
+    int which = -1;
+    // Held pairs (see merge) take no part until their hold ends; the step stops there.
+    double hold_end = kInf;
+    auto held = [&](int k) {
+      if (k >= M) return false;
+      const double until = hold_until_[lo + k] - t0_[lo];  // in the cluster's local time
+      if (!(until > tau)) return false;
+      hold_end = std::min(hold_end, until);
+      return true;
+    };
+    // A function at or below zero within round-off but not moving down takes a resolution interval
+    // as its step (as in first_root): its proven steps would be far below the resolution.
+    const double skip = kResolutionSkip * tau_c_;
+    auto step_of = [&](double f, double step) { return f <= 0 ? std::max(step, skip) : step; };
+    // The quadratic bound of function k: concave, so positive over [0, H] when positive at H.
+    auto value = [&](int k) { return k < M ? x[k] : d_ - x[k - M]; };
+    auto rate = [&](int k) { return k < M ? xd[k] : -xd[k - M]; };
+    auto quadratic_clear = [&](int k, double H) {
+      const double f = value(k);
+      return f > 0 && f + H * (rate(k) - 0.5 * m2 * H) > 0;
+    };
+    constexpr double kUnknown = -1.0;  // quadratic step not worked out: longer than some step
+    for (int k = 0; k < functions; ++k) {
+      if (held(k)) {
+        hq[k] = kInf;
+        continue;
+      }
+      const double f = value(k), f1 = rate(k);
+      if (f <= 0) {
+        const Jet jk = jet_of(k);
+        if (at_root(jk.d[0], jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
+      }
+      if (h < kInf && quadratic_clear(k, h)) {
+        hq[k] = kUnknown;
+        continue;
+      }
+      hq[k] = step_of(f, quadratic_step(f, f1, -0.5 * m2));
+      if (hq[k] < h) {
+        h = hq[k];
+        which = k;
+      }
+    }
+    Jet jw;
+    if (which >= 0) {
+      jw = jet_of(which);
+      h = step_of(jw.d[0], safe_step(jw, kInf));
+      for (int k = 0; k < functions; ++k) {
+        if (k == which) continue;
+        if (hq[k] == kUnknown) {
+          if (quadratic_clear(k, h)) continue;
+          hq[k] = step_of(value(k), quadratic_step(value(k), rate(k), -0.5 * m2));
+        }
+        if (!(hq[k] < h) || hq[k] == kInf) continue;
+        const Jet jk = jet_of(k);
+        if (jk.d[0] > 0 && jk.lower_positive(h)) continue;  // proven positive over the whole step
+        const double hk = step_of(jk.d[0], safe_step(jk, h));
+        if (hk < h) {
+          h = hk;
+          which = k;
+          jw = jk;
+        }
+      }
+    }
+    if (hold_end < kInf && tau + h >= hold_end) {  // no root before the first hold ends: go there
+      tau = hold_end;
+      continue;
+    }
+    if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
+    // At zero within round-off, not moving down, and its step raised to the resolution interval:
+    // a resolution skip (no root can be bracketed from it: root_upper is infinite when f1 >= 0).
+    if (h == skip && jw.d[0] <= 0) ++counters_.resolution_skips;
+    if (jw.root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
+    tau += h;
+  }
+  return {Root::Refresh, tau, 0};
+}
+
+// Two particles: one underdamped mode (lambda = 2), x = y = e^{-beta t} R sin(w t + phi), so the
+// contact ends at w t + phi = pi. From x = 0 this is t = pi / w = tau_c, Eq. (tauc).
+double ExactEngine::pair_contact_end(int lo) const {
+  const ModeConstants& mc = tables_[2].modes[0];
+  const double y0 = std::max(y0_[lo], 0.0), v0 = yd0_[lo];
+  if (y0 == 0 && v0 <= 0) return 0.0;
+  const double phi = std::atan2(y0, (v0 + mc.beta * y0) / mc.w);  // in [0, pi]
+  return (std::numbers::pi - phi) / mc.w;
+}
+
+void ExactEngine::predict_cluster(int lo) {
+  const int n = cluster_size(lo);
+  if (n == 1) {
+    set_slot(cluster_slot(lo), kInf, SlotKind::None, lo);
+    return;
+  }
+  const ClusterModeTable& tab = tables_[n];
+  // Largest overlap any later time can reach: |x_i| <= sqrt(2/n) sum_j sqrt(E_j) / omega0_j.
+  double reach = 0.0;
+  for (int j = 0; j < tab.M; ++j) reach += amp0_[lo + j];
+  const bool watch = tab.s_max * reach >= d_;
+  const double t0 = t0_[lo];
+  if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {
+    const double tau = pair_contact_end(lo);
+    ++counters_.closed_form_predictions;
+    set_slot(cluster_slot(lo), t0 + tau, SlotKind::ContactEnd, lo, tau);
+    return;
+  }
+  const std::uint64_t steps_before = counters_.search_steps;
+  const Root r = first_internal_root(lo, watch);
+  ++counters_.cluster_searches;
+  counters_.cluster_search_steps += counters_.search_steps - steps_before;
+  switch (r.kind) {
+    case Root::Found:
+      if (r.which >= tab.M) {
+        set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::PassThrough, lo + r.which - tab.M);
+      } else {
+        set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::ContactEnd, lo + r.which, r.sigma);
+      }
+      break;
+    case Root::Refresh: set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::Refresh, lo); break;
+    case Root::None: set_slot(cluster_slot(lo), kInf, SlotKind::None, lo); break;
+  }
+}
+
+// Held pairs (merge) may sit below zero while held, so their cluster's overlaps are not bounded.
+bool ExactEngine::has_holds(int lo) const {
+  for (int i = lo; i < hi_[lo]; ++i) {
+    if (hold_until_[i] > t0_[lo]) return true;
+  }
+  return false;
+}
+
+void ExactEngine::predict_gap(int i) {
+  const int a = lo_of_[i], b = i + 1;
+  const double t = gap_t_[i];
+  // Valid until either neighbour changes on its own (its internal event or refresh); any other
+  // change of a neighbour re-predicts this gap.
+  const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
+  EdgeFunction fn;
+  // f(s) = gap(t) + [u_b(t+s) - u_b(t)] - [u_a(t+s) - u_a(t)]; gravity cancels in the
+  // centre-of-mass parts, which leaves a line plus the mode parts.
+  const double ta = t - t0_[a], tb = t - t0_[b];
+  fn.c1 = (V0_[b] - g_ * tb) - (V0_[a] - g_ * ta);
+  fn.c0 = gap_s_[i] - (gap_ub_[i] - tb * (V0_[b] - 0.5 * g_ * tb)) + (gap_ua_[i] - ta * (V0_[a] - 0.5 * g_ * ta));
+  if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
+  if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
+  // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
+  // z_bottom - z_com = const + sum_i x_i (n-1-i)/n. Both mode parts enter f with weights >= 0.
+  fn.modes_nonnegative = !has_holds(a) && !has_holds(b);
+  const Root r = first_root(fn, horizon - t);
+  switch (r.kind) {
+    case Root::Found: set_slot(gap_slot(i), t + r.sigma, SlotKind::ContactBegin, i); break;
+    case Root::Refresh: set_slot(gap_slot(i), t + r.sigma, SlotKind::Refresh, i); break;
+    case Root::None: set_slot(gap_slot(i), kInf, SlotKind::None, i); break;
+  }
+}
+
+void ExactEngine::predict_floor() {
+  if (floor_ == nullptr) {
+    set_slot(floor_slot(), kInf, SlotKind::None, 0);
+    return;
+  }
+  const double t = floor_t_;
+  const double tau = t - t0_[0];
+  EdgeFunction fn;
+  // f(s) = h(t) + u_1(t+s) - u_1(t): a parabola under gravity plus the modes of the cluster.
+  fn.c1 = V0_[0] - g_ * tau;
+  fn.p2 = -g_;
+  fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
+  if (cluster_size(0) >= 2) fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
+  fn.modes_nonnegative = !has_holds(0);
+  const Root r = first_root(fn, slots_[cluster_slot(0)].t - t);
+  switch (r.kind) {
+    case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;
+    case Root::Refresh: set_slot(floor_slot(), t + r.sigma, SlotKind::Refresh, 0); break;
+    case Root::None: set_slot(floor_slot(), kInf, SlotKind::None, 0); break;
+  }
+}
+
+}  // namespace granchain
