@@ -1,10 +1,12 @@
 // Exact event-driven engine against the reference Runge-Kutta engine on the same work, in one
-// invocation (issue 3). Each workload is the driven column of the paper (N = 25, thermal floor)
-// run through run_driven_column, the code path of `granchain run`, so both engines do the same
-// sampling and observation. The ratio is reference wall time / exact wall time.
+// invocation. The N = 25 workloads are the driven column of the paper (thermal floor) run through
+// run_driven_column, the code path of `granchain run`, so both engines do the same sampling and
+// observation; the large columns (N = 150, e = 0.1) time the engines alone on a settled column.
+// The ratio is reference wall time / exact wall time.
 //
 //   build/bench/engine_speed            # full: the k = 1e8 reference runs take ~10 s each
-//   build/bench/engine_speed --quick    # every reference time extrapolated from a short run
+//   build/bench/engine_speed --quick    # every N = 25 reference time extrapolated from a short run
+//   build/bench/engine_speed --skip-large  # without the N = 150 columns (about 2 minutes)
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -77,6 +79,51 @@ EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   return {1e9 * wall / collisions, static_cast<double>(c.search_steps) / collisions, c, collisions};
 }
 
+// A settled large column (paper Sec. III.C: N = 150, e = 0.1, the power-law regime): the exact
+// engine runs the transient [0, settle], and from its state at `settle` both engines run the
+// window, the exact one for `window`, the reference for `ref_window` (its wall time scaled to
+// `window`: its cost is a fixed number of steps per unit time). Engines alone, no observers.
+struct LargeColumn {
+  double k;
+  double ref_window;  // reference window, shorter where its steps are many
+};
+struct LargeTiming {
+  double exact_s = 0, ref_s = 0;  // wall seconds over the window (reference: scaled)
+  double events = 0, collisions = 0;
+  EngineCounters window;          // exact engine's counters over the window
+};
+LargeTiming time_large_column(const LargeColumn& w, int N, double e, double settle, double window,
+                              std::uint64_t seed) {
+  const ChainParameters p{.N = N, .k = w.k, .e = e};
+  ThermalFloor floor(p.kT0, p.m, seed);
+  EngineChoice exact;
+  auto engine = make_engine(exact, p, driven_column_initial_state(p, seed), &floor);
+  NullEventSink none;
+  engine->advance_to(settle, none);
+  const ChainState settled = engine->state();
+  const EngineCounters before = engine->counters();
+  LargeTiming out;
+  auto t0 = std::chrono::steady_clock::now();
+  engine->advance_to(settle + window, none);
+  out.exact_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const EngineCounters after = engine->counters();
+  out.events = static_cast<double>(after.steps - before.steps);
+  out.collisions = static_cast<double>(after.contact_ends + after.floor_hits - before.contact_ends - before.floor_hits);
+  out.window = after;
+  out.window.search_steps -= before.search_steps;
+  out.window.cluster_searches -= before.cluster_searches;
+  out.window.cluster_search_steps -= before.cluster_search_steps;
+  out.window.edge_searches -= before.edge_searches;
+  ThermalFloor ref_floor(p.kT0, p.m, seed + 1);
+  EngineChoice reference;
+  reference.name = "reference";
+  auto ref = make_engine(reference, p, settled, &ref_floor);
+  t0 = std::chrono::steady_clock::now();
+  ref->advance_to(settle + w.ref_window, none);
+  out.ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() * (window / w.ref_window);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,6 +135,8 @@ int main(int argc, char** argv) {
   app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation (> 0)");
   app.add_option("--seed", seed, "base seed");
   int repeat = 3;
+  bool skip_large = false;
+  app.add_flag("--skip-large", skip_large, "leave out the large columns (N = 150, about 2 minutes)");
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
   // Bad input: one line naming the parameter and its valid range, exit code 2 (as granchain does).
@@ -165,5 +214,27 @@ int main(int argc, char** argv) {
       "closed form: a pair's contact end, two free particles, a free particle over the floor; bound: ruled out by "
       "the gap's lower bound with no step;\ncluster search: a cluster's contact ends searched step by step; gap/floor "
       "search: a gap or the floor height next to a cluster, step by step.\n");
+  if (skip_large) return 0;
+  // Large columns: one timing each (the transient alone takes minutes at k = 1e10).
+  const int N = 150;
+  const double e = 0.1, settle = 45.0, window = 5.0;
+  fmt::print("\nN = {} driven column, e = {}, kT0 = 1, seed {}: transient [0, {}] with the exact engine, then both engines "
+             "from its state over a window of {} (engines alone, one timing)\n",
+             N, e, seed, settle, window);
+  fmt::print("{:>6} | {:>8} {:>10} {:>10} {:>9} | {:>9} {:>12} {:>9} | {:>9} {:>8} {:>8}\n", "k", "exact s", "events",
+             "collisions", "us/event", "ref s", "ref window", "us/event", "ratio", "cl.steps", "edge");
+  for (const LargeColumn& w : {LargeColumn{1e6, 5.0}, LargeColumn{1e8, 0.5}, LargeColumn{1e10, 0.05}}) {
+    const LargeTiming t = time_large_column(w, N, e, settle, window, seed);
+    fmt::print("{:>6.0e} | {:>8.2f} {:>10.0f} {:>10.0f} {:>9.2f} | {:>9.2f} {:>12} {:>9.2f} | {:>8.2f}x {:>8.2f} {:>8.2f}\n",
+               w.k, t.exact_s, t.events, t.collisions, 1e6 * t.exact_s / t.events, t.ref_s,
+               w.ref_window < window ? fmt::format("{} x{:.0f}", w.ref_window, window / w.ref_window) : "measured",
+               1e6 * t.ref_s / t.events, t.ref_s / t.exact_s,
+               static_cast<double>(t.window.cluster_search_steps) / t.events,
+               static_cast<double>(t.window.search_steps - t.window.cluster_search_steps) / t.events);
+    std::fflush(stdout);
+  }
+  fmt::print("events: exact engine's events in the window (contact begins, ends, floor hits, refreshes); ref us/event: the "
+             "reference's wall time over the same number of events;\nratio: reference s / exact s; cl.steps, edge: "
+             "root-free steps of cluster and of gap/floor searches per event.\n");
   return 0;
 }
