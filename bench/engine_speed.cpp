@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cli.hpp"
 #include "engines/engine_factory.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/driven_column.hpp"
@@ -139,17 +140,10 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-large", skip_large, "leave out the large columns (N = 150, about 2 minutes)");
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
-  // Bad input: one line naming the parameter and its valid range, exit code 2 (as granchain does).
-  try {
-    app.parse(argc, argv);
-    if (!(short_T > 0)) throw CLI::ValidationError("--short-T", fmt::format("must be > 0, got {}", short_T));
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::string msg = e.what();
-    std::replace(msg.begin(), msg.end(), '\n', ' ');
-    fmt::print(stderr, "engine_speed: error: {} (see engine_speed --help)\n", msg);
-    return 2;
+  if (const auto code = bench::parse_or_exit(app, argc, argv, "engine_speed", [&] {
+        if (!(short_T > 0)) throw CLI::ValidationError("--short-T", fmt::format("must be > 0, got {}", short_T));
+      })) {
+    return *code;
   }
   // Wall times on a shared machine vary by tens of per cent between invocations; the fastest of
   // a few identical runs is the least disturbed measurement.

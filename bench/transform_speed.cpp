@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <vector>
 
+#include "bench_cli.hpp"
 #include "engines/exact/cluster_modes.hpp"
 #include "engines/exact/sine_transform.hpp"
 
@@ -19,16 +20,7 @@ int main(int argc, char** argv) {
   CLI::App app{"granchain: dense sine product against FFTW's sine transform, ns per projection"};
   int repeat = 5;
   app.add_option("--repeat", repeat, "time every size this many times and keep the fastest")->check(CLI::Range(1, 100));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::string msg = e.what();
-    std::replace(msg.begin(), msg.end(), '\n', ' ');
-    fmt::print(stderr, "transform_speed: error: {} (see transform_speed --help)\n", msg);
-    return 2;
-  }
+  if (const auto code = bench::parse_or_exit(app, argc, argv, "transform_speed")) return *code;
   fmt::print("{:>5} {:>5} {:>10} {:>10} {:>7}  {}\n", "n", "M", "dense ns", "FFTW ns", "ratio", "engine uses");
   for (int n : {8, 16, 24, 25, 31, 32, 37, 48, 64, 73, 100, 101, 128, 149, 150}) {
     ClusterModeTable table(n, 1e8, 3000.0);
