@@ -1,5 +1,5 @@
 #pragma once
-// Exact event-driven engine (issue 3). Between changes of the contact set the equations of motion
+// Exact event-driven engine. Between changes of the contact set the equations of motion
 // of the spring-dashpot chain (Eq. force-0) are linear with constant coefficients, so the motion
 // is known in closed form:
 //   - a free particle flies on a parabola;
