@@ -7,6 +7,7 @@
 //   build/bench/engine_speed            # full: the k = 1e8 reference runs take ~10 s each
 //   build/bench/engine_speed --quick    # every N = 25 reference time extrapolated from a short run
 //   build/bench/engine_speed --skip-large  # without the N = 150 columns (about 2 minutes)
+//   build/bench/engine_speed --free-space  # also free-space collapses at N = 25 (up to 20 minutes)
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -20,6 +21,7 @@
 #include "model/chain_parameters.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
+#include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 
 using namespace granchain;
@@ -136,7 +138,10 @@ int main(int argc, char** argv) {
   app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation (> 0)");
   app.add_option("--seed", seed, "base seed");
   int repeat = 3;
-  bool skip_large = false;
+  bool skip_large = false, free_space = false;
+  app.add_flag("--free-space", free_space,
+               "also time free-space collapses, N = 25, e = 0.3, 200 launches at k = 1e8 and 1e10 (exact engine; "
+               "up to 20 minutes)");
   app.add_flag("--skip-large", skip_large, "leave out the large columns (N = 150, about 2 minutes)");
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
@@ -208,6 +213,24 @@ int main(int argc, char** argv) {
       "closed form: a pair's contact end, two free particles, a free particle over the floor; bound: ruled out by "
       "the gap's lower bound with no step;\ncluster search: a cluster's contact ends searched step by step; gap/floor "
       "search: a gap or the floor height next to a cluster, step by step.\n");
+  if (free_space) {
+    // Sec. III.D's collapse count (granchain collapse --N 25 --e 0.3 --k K --realizations 200), one
+    // core, one timing; the reference cannot run these k in any affordable time.
+    fmt::print("\nfree-space collapse, N = 25, e = 0.3, a = v0 = 1, dv0 = 0.1, 200 launches, seed {} (exact engine, one timing)\n",
+               seed);
+    fmt::print("{:>6} | {:>9} {:>12} {:>14} {:>13} {:>9}\n", "k", "wall s", "collisions", "us/collision", "mean n_tot",
+               "held");
+    for (double k : {1e8, 1e10}) {
+      CollapseSpec spec;
+      spec.params = ChainParameters{.N = 25, .g = 0.0, .k = k, .e = 0.3};
+      spec.realizations = 200;
+      spec.seed = seed;
+      const CollapseResult r = run_collapse(spec);
+      fmt::print("{:>6.0e} | {:>9.1f} {:>12} {:>14.2f} {:>13.1f} {:>9}\n", k, r.wall_seconds, r.collisions,
+                 1e6 * r.wall_seconds / static_cast<double>(r.collisions), r.n_tot_mean, r.held_contacts);
+      std::fflush(stdout);
+    }
+  }
   if (skip_large) return 0;
   // Large columns: one timing each (the transient alone takes minutes at k = 1e10).
   const int N = 150;

@@ -483,3 +483,64 @@ TEST(LongExactEngine, LargeCondensedColumnAgreesWithReference) {
     EXPECT_LT(std::abs(z), 4.0) << names[q];
   }
 }
+
+// The audit (EngineChoice::audit) reads the state only: the same trajectory with it on, and on a
+// short condensed run it evaluates every watched value and finds none of the wrong sign.
+TEST(ExactEngine, AuditLeavesTheTrajectoryUnchanged) {
+  for (int N : {25, 40}) {
+    const ChainParameters p{.N = N, .k = 1e6, .e = 0.2};
+    auto final_state = [&](bool audit, EngineCounters& c) {
+      ThermalFloor floor(p.kT0, p.m, 7);
+      EngineChoice choice;
+      choice.audit = audit;
+      auto engine = make_engine(choice, p, driven_column_initial_state(p, 7), &floor);
+      NullEventSink none;
+      engine->advance_to(20.0, none);
+      c = engine->counters();
+      return engine->state();
+    };
+    EngineCounters plain, audited;
+    const ChainState a = final_state(false, plain), b = final_state(true, audited);
+    EXPECT_EQ(a.z, b.z) << "N=" << N;
+    EXPECT_EQ(a.v, b.v) << "N=" << N;
+    EXPECT_EQ(plain.steps, audited.steps);
+    EXPECT_EQ(plain.audit_instants, 0u);
+    EXPECT_GT(audited.audit_instants, audited.steps);  // two instants per event, nearly all used
+    EXPECT_GE(audited.audit_values, audited.audit_instants * static_cast<std::uint64_t>(N - 1));
+    EXPECT_EQ(audited.audit_violations, 0u) << "N=" << N;
+  }
+}
+
+// Long: the audit over more than 10^7 events, on condensed and collisional columns, small and
+// large clusters (the large ones through the sine transform), k = 1e6 ... 1e10. Prints the counts.
+TEST(LongExactEngine, AuditFindsNoValueOfTheWrongSignOverTenMillionEvents) {
+  struct Case {
+    int N;
+    double e, k, T;
+  };
+  std::uint64_t events = 0, values = 0, violations = 0;
+  for (const Case& c : {Case{25, 0.5, 1e8, 2500}, Case{25, 0.9, 1e10, 200}, Case{25, 0.05, 1e6, 500},
+                        Case{40, 0.3, 1e8, 200}, Case{150, 0.1, 1e6, 50}, Case{150, 0.1, 1e8, 50}}) {
+    const ChainParameters p{.N = c.N, .k = c.k, .e = c.e};
+    ThermalFloor floor(p.kT0, p.m, 3);
+    EngineChoice choice;
+    choice.audit = true;
+    auto engine = make_engine(choice, p, driven_column_initial_state(p, 3), &floor);
+    NullEventSink none;
+    engine->advance_to(c.T, none);
+    const EngineCounters k = engine->counters();
+    std::printf("N = %3d  e = %4.2f  k = %6.0e  T = %5.0f: %9llu events, %9llu instants, %11llu values, %llu of the wrong sign\n",
+                c.N, c.e, c.k, c.T, static_cast<unsigned long long>(k.steps),
+                static_cast<unsigned long long>(k.audit_instants), static_cast<unsigned long long>(k.audit_values),
+                static_cast<unsigned long long>(k.audit_violations));
+    std::fflush(stdout);
+    events += k.steps;
+    values += k.audit_values;
+    violations += k.audit_violations;
+  }
+  std::printf("in all: %llu events, %llu values checked, %llu of the wrong sign\n",
+              static_cast<unsigned long long>(events), static_cast<unsigned long long>(values),
+              static_cast<unsigned long long>(violations));
+  EXPECT_GE(events, 10000000u);
+  EXPECT_EQ(violations, 0u);
+}

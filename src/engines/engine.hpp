@@ -32,6 +32,10 @@ struct EngineCounters {
   std::uint64_t resolution_skips = 0;
   // Exact engine: grazing contacts held in contact longer because their pair keeps grazing.
   std::uint64_t held_contacts = 0;
+  // Exact engine with its audit on (EngineChoice::audit): instants checked between events, the
+  // watched values evaluated there, and those found with the wrong sign beyond round-off (an
+  // overlap of a closed pair at or below zero or at d, a gap or the floor height below zero).
+  std::uint64_t audit_instants = 0, audit_values = 0, audit_violations = 0;
 };
 
 class Engine {

@@ -14,6 +14,7 @@ struct EngineChoice {
   std::string name = "exact";  // one of engine_names(); the first is the default
   double dt_factor = 100.0;        // time-stepped engines: dt = tau_c / dt_factor
   HardSphereOptions hard;          // the hard-sphere engine (k = infinity): TC model, collapse watch
+  bool audit = false;              // exact engine: check every overlap and gap between events (slow)
 };
 
 // True for engines that treat the spheres as hard (k = infinity, instantaneous collisions).

@@ -9,8 +9,9 @@
 
 namespace granchain {
 
-ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor)
-    : n_(p.N),
+ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, bool audit)
+    : audit_(audit),
+      n_(p.N),
       d_(p.d),
       g_(p.g),
       floor_(floor),
@@ -397,6 +398,7 @@ void ExactEngine::advance_to(double t, EventSink& sink) {
   while (queue_.next_time() <= t) {
     const double t_event = queue_.next_time();
     handle(next_slot(), sink);
+    if (audit_) audit_interval(t_event, std::min(queue_.next_time(), t));
     if (sink.stop_requested()) {
       now_ = t_event;
       state_valid_ = false;

@@ -30,7 +30,10 @@ namespace granchain {
 class ExactEngine final : public Engine {
  public:
   // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
-  ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor);
+  // audit: after every event, evaluate every overlap, gap and the floor height at kAuditInstants
+  // random instants before the next event and count those with the wrong sign (EngineCounters);
+  // the trajectory is the same with and without it.
+  ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, bool audit = false);
 
   std::string_view name() const override { return "exact"; }
   void advance_to(double t, EventSink& sink) override;
@@ -50,6 +53,8 @@ class ExactEngine final : public Engine {
   // Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
   // last proven-safe time, where the search starts again (no physics happens at a refresh).
   static constexpr int kMaxIterations = 400;
+  // Steps after which a gap or floor search counts values within round-off of zero as zero.
+  static constexpr int kStallSteps = 32;
   // Below this fraction of tau_c the engine does not resolve a function that touches zero within
   // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
   static constexpr double kResolutionSkip = 1e-6;
@@ -85,6 +90,9 @@ class ExactEngine final : public Engine {
     EdgeTerm term[2];
     int terms = 0;
     bool modes_nonnegative = false;  // every term's mode part is >= 0 up to sigma_max (predict_gap)
+    // Round-off of c0 (a difference of stored heights): values up to this (plus the mode part's
+    // round-off) are zero as far as double precision can tell.
+    double noise = 0;
   };
 
   // --- clusters (indexed by their lowest particle lo) ---
@@ -123,6 +131,12 @@ class ExactEngine final : public Engine {
   void merge(int pair, double t, EventSink& sink);
   void floor_hit(double t, EventSink& sink);
   void refresh_cluster(int lo, double t);
+
+  // --- audit (exact_audit.cpp) ---
+  static constexpr int kAuditInstants = 2;
+  void audit_interval(double a, double b);
+  bool audit_ = false;
+  std::uint64_t audit_draws_ = 0;
 
   // --- schedule: 2N slots (N clusters, N-1 gaps, the floor) in an EventQueue ---
   int cluster_slot(int lo) const { return lo; }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engines/exact/taylor_bounds.hpp"
@@ -45,6 +46,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
   }
   double sigma = 0.0;
   const double lower0 = fn.c0 - (fn.modes_nonnegative ? 1e-10 : 1.0) * reach;
+  const double noise = fn.noise + 8 * std::numeric_limits<double>::epsilon() * reach;
   if (lower0 > 0) {
     const double clear = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
     if (clear >= sigma_max) {
@@ -85,7 +87,12 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
         jet.mP += mc.bound[P] * amp;
       }
     }
-    if (at_root(jet.d[0], jet.d[1], jet.d[2], jet.d[3])) return {Root::Found, sigma, 0};
+    // A search that has not closed in on a root after kStallSteps steps counts values within
+    // round-off of zero as zero: a function hovering there (a gap closing at a grazing speed next
+    // to an energetic cluster) would otherwise take proven steps far below the resolution, and a
+    // search that cannot move the global time piles up refreshes at one instant.
+    const double zero = it >= kStallSteps ? noise : 0.0;
+    if (at_root(jet.d[0] - zero, jet.d[1], jet.d[2], jet.d[3])) return {Root::Found, sigma, 0};
     const double cap = sigma_max - sigma;
     double h = safe_step(jet, cap);
     // At or below zero within round-off but not moving down (a function leaving zero, or touching
@@ -93,7 +100,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     // below the resolution when f1 is a grazing speed, and f would need ~ (skip / step)^2 of them
     // to rise clear. Step over a resolution interval instead; a root within it would be a contact
     // or gap shorter than kResolutionSkip tau_c, which the engine does not resolve.
-    if (jet.d[0] <= 0 && h < kResolutionSkip * tau_c_) {
+    if (jet.d[0] <= zero && h < kResolutionSkip * tau_c_) {
       h = std::min(cap, kResolutionSkip * tau_c_);
       ++counters_.resolution_skips;
     }
@@ -320,6 +327,9 @@ void ExactEngine::predict_gap(int i) {
   const double ta = t - t0_[a], tb = t - t0_[b];
   fn.c1 = (V0_[b] - g_ * tb) - (V0_[a] - g_ * ta);
   fn.c0 = gap_s_[i] - (gap_ub_[i] - tb * (V0_[b] - 0.5 * g_ * tb)) + (gap_ua_[i] - ta * (V0_[a] - 0.5 * g_ * ta));
+  fn.noise = 8 * std::numeric_limits<double>::epsilon() *
+             (std::abs(gap_s_[i]) + std::abs(gap_ub_[i]) + std::abs(tb * (V0_[b] - 0.5 * g_ * tb)) +
+              std::abs(gap_ua_[i]) + std::abs(ta * (V0_[a] - 0.5 * g_ * ta)));
   if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
   if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
   // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
@@ -345,6 +355,8 @@ void ExactEngine::predict_floor() {
   fn.c1 = V0_[0] - g_ * tau;
   fn.p2 = -g_;
   fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
+  fn.noise = 8 * std::numeric_limits<double>::epsilon() *
+             (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
   if (cluster_size(0) >= 2) fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
   fn.modes_nonnegative = !has_holds(0);
   const Root r = first_root(fn, slots_[cluster_slot(0)].t - t);
