@@ -53,7 +53,7 @@ class ExactEngine final : public Engine {
   // Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
   // last proven-safe time, where the search starts again (no physics happens at a refresh).
   static constexpr int kMaxIterations = 400;
-  // Steps after which a gap or floor search counts values within round-off of zero as zero.
+  // Steps after which a search counts values within round-off of zero as zero.
   static constexpr int kStallSteps = 32;
   // Below this fraction of tau_c the engine does not resolve a function that touches zero within
   // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').

@@ -127,7 +127,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
   double tau = search_from_[lo];
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
-    double sum2 = 0.0;
+    double sum2 = 0.0, sum_amp = 0.0;
     for (int j = 0; j < M; ++j) {
       const ModeConstants& mc = tab.modes[j];
       double y, yd;
@@ -146,6 +146,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       amp2[j] = mc.bound[2] * amp;
       ampP[j] = mc.bound[P] * amp;
       sum2 += amp2[j];
+      sum_amp += amp;
     }
     const double m2 = tab.s_max * sum2;  // >= |x_i''| for every i (|S_ij| <= sqrt(2/n))
     tab.to_overlaps(yn, x);
@@ -196,9 +197,13 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       return true;
     };
     // A function at or below zero within round-off but not moving down takes a resolution interval
-    // as its step (as in first_root): its proven steps would be far below the resolution.
+    // as its step (as in first_root): its proven steps would be far below the resolution. After
+    // kStallSteps steps without closing in, "zero" includes the round-off of the overlaps (8 ulps
+    // of the mode amplitudes that sum to them), as in first_root.
     const double skip = kResolutionSkip * tau_c_;
-    auto step_of = [&](double f, double step) { return f <= 0 ? std::max(step, skip) : step; };
+    const double zero =
+        it >= kStallSteps ? 8 * std::numeric_limits<double>::epsilon() * (tab.s_max * sum_amp + d_) : 0.0;
+    auto step_of = [&](double f, double step) { return f <= zero ? std::max(step, skip) : step; };
     // The quadratic bound of function k: concave, so positive over [0, H] when positive at H.
     auto value = [&](int k) { return k < M ? x[k] : d_ - x[k - M]; };
     auto rate = [&](int k) { return k < M ? xd[k] : -xd[k - M]; };
@@ -213,9 +218,9 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
         continue;
       }
       const double f = value(k), f1 = rate(k);
-      if (f <= 0) {
+      if (f <= zero) {
         const Jet jk = jet_of(k);
-        if (at_root(jk.d[0], jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
+        if (at_root(jk.d[0] - zero, jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
       }
       if (h < kInf && quadratic_clear(k, h)) {
         hq[k] = kUnknown;
@@ -255,7 +260,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     if (h == kInf) return {Root::None, kInf, 0};  // every mode at rest: the overlaps never change
     // At zero within round-off, not moving down, and its step raised to the resolution interval:
     // a resolution skip (no root can be bracketed from it: root_upper is infinite when f1 >= 0).
-    if (h == skip && jw.d[0] <= 0) ++counters_.resolution_skips;
+    if (h == skip && jw.d[0] <= zero) ++counters_.resolution_skips;
     if (jw.root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
     tau += h;
   }
