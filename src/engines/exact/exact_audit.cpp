@@ -26,14 +26,7 @@ void ExactEngine::audit_interval(double a, double b) {
   if (!(b > a) || !std::isfinite(b)) return;
   // A missed root leaves its function on the wrong side by a fraction of the amplitude of the
   // modes that drive it; round-off near a root is ~1e-16 of that. The tolerance, 1e-9 of the
-  // amplitude, sits far between the two.
-  auto reach = [&](int lo) {  // sqrt(2/n) sum_j sqrt(E_j)/omega0_j >= |x_i| at all later times
-    const int n = cluster_size(lo);
-    if (n < 2) return 0.0;
-    double r = 0.0;
-    for (int j = 0; j < n - 1; ++j) r += amp0_[lo + j];
-    return tables_[n].s_max * r;
-  };
+  // amplitude (overlap_reach), sits far between the two.
   for (int q = 0; q < kAuditInstants; ++q) {
     const double s = a + (b - a) * uniform01(audit_draws_);
     if (!(s > a && s < b)) continue;
@@ -43,7 +36,7 @@ void ExactEngine::audit_interval(double a, double b) {
     double* v = sv_.data();
     for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
       const int hi = hi_[lo];
-      const double tol = 1e-9 * reach(lo);
+      const double tol = 1e-9 * overlap_reach(lo);
       if (hi > lo) {
         cluster_state(lo, s, x, xd, v);
         for (int i = lo; i < hi; ++i) {
@@ -55,14 +48,14 @@ void ExactEngine::audit_interval(double a, double b) {
       }
       if (hi + 1 < n_) {  // the open pair above this cluster
         ++counters_.audit_values;
-        const double tol_gap = 1e-12 * d_ + tol + 1e-9 * reach(hi + 1);
+        const double tol_gap = 1e-12 * d_ + tol + 1e-9 * overlap_reach(hi + 1);
         if (!(gap_at(hi, s) > -tol_gap)) ++counters_.audit_violations;
       }
     }
     if (floor_ != nullptr) {
       ++counters_.audit_values;
       const double height = floor_s_ + (edge_u(0, false, s) - floor_u_);
-      if (!(height > -(1e-12 * d_ + 1e-9 * reach(0)))) ++counters_.audit_violations;
+      if (!(height > -(1e-12 * d_ + 1e-9 * overlap_reach(0)))) ++counters_.audit_violations;
     }
   }
 }

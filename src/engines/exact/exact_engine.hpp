@@ -120,6 +120,8 @@ class ExactEngine final : public Engine {
   void predict_cluster(int lo);
   void predict_gap(int i);
   bool has_holds(int lo) const;  // a held pair in cluster lo (merge)
+  // sqrt(2/n) sum_j sqrt(E_j) / omega0_j: no overlap of cluster lo exceeds it at any later time.
+  double overlap_reach(int lo) const;
   void predict_floor();
   Root first_root(const EdgeFunction& f, double sigma_max) const;
   Root first_internal_root(int lo, bool watch_pass_through) const;

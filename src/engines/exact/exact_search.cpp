@@ -284,10 +284,7 @@ void ExactEngine::predict_cluster(int lo) {
     return;
   }
   const ClusterModeTable& tab = tables_[n];
-  // Largest overlap any later time can reach: |x_i| <= sqrt(2/n) sum_j sqrt(E_j) / omega0_j.
-  double reach = 0.0;
-  for (int j = 0; j < tab.M; ++j) reach += amp0_[lo + j];
-  const bool watch = tab.s_max * reach >= d_;
+  const bool watch = overlap_reach(lo) >= d_;  // could an overlap reach d?
   const double t0 = t0_[lo];
   if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {
     const double tau = pair_contact_end(lo);
@@ -310,6 +307,14 @@ void ExactEngine::predict_cluster(int lo) {
     case Root::Refresh: set_slot(cluster_slot(lo), t0 + r.sigma, SlotKind::Refresh, lo); break;
     case Root::None: set_slot(cluster_slot(lo), kInf, SlotKind::None, lo); break;
   }
+}
+
+double ExactEngine::overlap_reach(int lo) const {
+  const int n = cluster_size(lo);
+  if (n < 2) return 0.0;
+  double reach = 0.0;
+  for (int j = 0; j < n - 1; ++j) reach += amp0_[lo + j];
+  return tables_[n].s_max * reach;
 }
 
 // Held pairs (merge) may sit below zero while held, so their cluster's overlaps are not bounded.
