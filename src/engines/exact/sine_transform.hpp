@@ -22,9 +22,9 @@ class SineTransform {
   void apply(const double* in, double* out) const;
 
   // Does the engine use the transform for clusters with M modes? A rule in M alone, so that a
-  // trajectory never depends on timing: from n = 32 particles (M = 31) on, where the transform
-  // beats the dense product for every n, prime n (FFTW's slowest case) included, by 1.5x at
-  // n = 32 and up to 10x at n = 150; bench/transform_speed measures both.
+  // trajectory never depends on timing: from n = 32 particles (M = 31) on. There the transform
+  // is 2-6x faster than the dense product when n has only small prime factors and about as fast
+  // when n has a large prime factor (FFTW's slowest case); bench/transform_speed measures both.
   static bool pays_off(int M);
 
  private:
