@@ -30,6 +30,7 @@ struct RunFlags {
   bool no_db = false;
   bool quiet = false;
   bool progress_lines = false;
+  bool audit = false;
 };
 
 int execute_run(const std::shared_ptr<RunFlags>& impl_);
@@ -65,6 +66,10 @@ Subcommand add_run_command(CLI::App& app) {
   sub_->add_flag("--quiet,-q", impl.quiet, "print no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines,
                  "print progress on standard error: a line every 10 s when it is not a terminal");
+  sub_->add_flag("--audit", impl.audit,
+                 "exact engine: after every event evaluate every overlap, gap and the floor height at random "
+                 "instants before the next one and stop with exit 3 if one has the wrong sign (slower; the "
+                 "trajectory and results are the same)");
   return {sub_, [impl_] { return execute_run(impl_); }};
 }
 
@@ -119,6 +124,11 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       if (opt->count() > 0) raw[name] = RawValue{impl.flag_values[name], ""};
     opts = resolve_run_options(raw);
     opts.use_db = !impl.no_db;
+    if (impl.audit) {
+      if (opts.spec.engine.name != "exact")
+        throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
+      opts.spec.engine.audit = true;
+    }
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
     if (json_requested && !json_stdout) check_output_file(impl.json_path);
   } catch (const InputError& e) {

@@ -51,6 +51,9 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   }
   out += "\n";
   out += fmt::format("  cost: {} steps, {} events, {:.3g} s wall\n", r.steps, r.events, r.wall_seconds);
+  if (r.spec.engine.audit)
+    out += fmt::format("  audit: {} values at {} instants between events, none of the wrong sign\n", r.audit_values,
+                       r.audit_instants);
   if (!stored.empty()) out += fmt::format("  stored: {}\n", stored);
   return out;
 }

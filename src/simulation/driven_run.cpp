@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
@@ -86,6 +87,16 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.steps = c.steps;
   r.events = c.contact_ends + c.floor_hits;
   r.wall_seconds = seconds_since(wall0);
+  // The audit evaluated every overlap, gap and the floor height at random instants between
+  // events: a value of the wrong sign means an event was missed, and the run is not a result.
+  if (c.audit_violations > 0) {
+    throw UnphysicalStateError(t1, 0, 0,
+                               fmt::format("the audit found {} of {} overlaps, gaps or floor heights of the wrong sign "
+                                           "between events (an event was missed)",
+                                           c.audit_violations, c.audit_values));
+  }
+  r.audit_instants = c.audit_instants;
+  r.audit_values = c.audit_values;
   return r;
 }
 

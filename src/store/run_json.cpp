@@ -43,7 +43,7 @@ json run_result_to_json(const RunResult& r) {
                         {"K", p.kinetic.value},
                         {"K_err", p.kinetic.error}});
   }
-  return json{{"code_version", code_version()},
+  json j{{"code_version", code_version()},
               {"parameters", run_spec_to_json(r.spec)},
               {"derived", {{"D", r.law.D}, {"tau_c", r.law.tau_c}, {"dt", r.time_step},
                            {"sample_interval", r.sample_interval}, {"samples", r.samples}}},
@@ -54,6 +54,8 @@ json run_result_to_json(const RunResult& r) {
                                {"floor_hits", r.floor_hits}}},
               {"profiles", profiles},
               {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}}}};
+  if (r.spec.engine.audit) j["audit"] = {{"instants", r.audit_instants}, {"values", r.audit_values}, {"wrong_sign", 0}};
+  return j;
 }
 
 namespace {
