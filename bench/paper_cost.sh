@@ -15,6 +15,11 @@
 #
 #   bash bench/paper_cost.sh [--granchain build/granchain] [--preset paper] [--stride 8]
 #                            [--settle 40] [--short 10] [--long 40] [--list FILE]
+#                            [--engine NAME] [--where AWK-CONDITION]
+# --engine runs the sample with that engine instead of each point's own (the same points: the
+# sample depends only on the preset and the stride); --where keeps only the points for which the
+# awk condition on the fields N, e, k ($1, $2, $3) holds before strata are formed, e.g.
+# --where '$3 <= 1e7 && $2 < 0.5'.
 # --list FILE also writes one line per sampled point
 # (stratum N e k T0 T transient wall_short_s wall_long_s cost_s).
 set -euo pipefail
@@ -26,6 +31,8 @@ settle=40
 short=10
 long=40
 list=""
+engine_override=""
+where="1"
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --granchain) granchain=$2; shift 2 ;;
@@ -35,6 +42,8 @@ while [[ $# -gt 0 ]]; do
     --short) short=$2; shift 2 ;;
     --long) long=$2; shift 2 ;;
     --list) list=$2; shift 2 ;;
+    --engine) engine_override=$2; shift 2 ;;
+    --where) where=$2; shift 2 ;;
     *) echo "paper_cost.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -51,7 +60,7 @@ trap 'rm -rf "$work"' EXIT
   done | grep -v '^#' | awk '{
     for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
     print v["N"], v["e"], v["k"], v["T0"], v["T"], v["transient"], v["seed"], v["engine"]
-  }' | sort -u | sort -k1,1n -k2,2g -k3,3g -k4,4g > "$work/points"
+  }' | sort -u | sort -k1,1n -k2,2g -k3,3g -k4,4g | awk "$where" > "$work/points"
 total=$(wc -l < "$work/points")
 echo "# $total distinct points in preset '$preset'; sampling every ${stride}th per stratum (settle $settle, windows $short and $long)"
 
@@ -63,6 +72,7 @@ awk '{ print $1 "/" $3 "/" ($2 < 0.5 ? "lo" : "hi"), $0 }' "$work/points" | sort
 awk -v s="$stride" '{ if ($1 != st) { st = $1; i = 0 } if (i % s == 0 || i == 1) print; ++i }' "$work/strata" > "$work/sample"
 : > "$work/timed"
 while read -r stratum N e k T0 T transient seed engine; do
+  [[ -n "$engine_override" ]] && engine=$engine_override
   walls=()
   for window in "$short" "$long"; do
     walls+=("$("$granchain" run --N "$N" --e "$e" --k "$k" --T0 "$T0" --T "$window" --transient "$settle" \

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "analysis/blocking.hpp"
 #include "model/random.hpp"
@@ -90,4 +91,56 @@ TEST(Blocking, PowerOfTwoBins) {
   EXPECT_EQ(power_of_two_bins(100, 1024), 64);
   EXPECT_EQ(power_of_two_bins(1, 1024), 1);
   EXPECT_THROW(BinnedSums(100, 1), std::invalid_argument);
+}
+
+// The halves check on a settled series: white noise and AR(1) with phi = 0.9, 400 seeds each.
+// With |z| <= 3 and errors estimated from 16 or more blocks per half (z then follows roughly a
+// Student t with >= 15 degrees of freedom, P(|t| > 3) < 1 %), the false alarms expected are about
+// 4 of 400 (standard deviation 2); more than 16 would mean the check fires on stationary data.
+TEST(Blocking, HalvesCheckRarelyFlagsAStationarySeries) {
+  for (double phi : {0.0, 0.9}) {
+    int flagged = 0;
+    for (std::uint64_t seed = 1; seed <= 400; ++seed) flagged += !halves_check(ar1_bins(phi, 1 << 14, 1024, seed), mean_of).stationary;
+    std::printf("phi = %.1f: %d of 400 stationary series flagged\n", phi, flagged);
+    EXPECT_LE(flagged, 16) << "phi = " << phi;
+  }
+}
+
+// A linear drift a t/n added to unit white noise of n points moves the mean of the second half
+// above the first by a/2, whose standard error is 2/sqrt(n): a = 24/sqrt(n) gives z = 6 on average,
+// found beyond 3 in all but about 1 run in 1000; a drift four times smaller (z = 1.5) mostly passes.
+TEST(Blocking, HalvesCheckFindsADrift) {
+  const long n = 1 << 14;
+  auto drifting = [n](double a, std::uint64_t seed) {
+    Rng r(seed);
+    BinnedSums s(1024, 2);
+    for (long t = 0; t < n; ++t) {
+      double* b = s.bin(static_cast<int>(t * 1024 / n));
+      b[0] += 1.0;
+      b[1] += r.normal() + a * double(t) / n;
+    }
+    return s;
+  };
+  int found = 0, found_small = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const StationarityCheck c = halves_check(drifting(24.0 / std::sqrt(double(n)), seed), mean_of);
+    found += !c.stationary;
+    EXPECT_GT(c.z, 0.0);
+    found_small += !halves_check(drifting(6.0 / std::sqrt(double(n)), seed), mean_of).stationary;
+  }
+  std::printf("drift z = 6: %d of 200 found; z = 1.5: %d of 200\n", found, found_small);
+  EXPECT_GE(found, 196);
+  EXPECT_LE(found_small, 100);
+}
+
+// No spread at all (every bin the same): stationary exactly when the halves are equal.
+TEST(Blocking, HalvesCheckWithoutSpreadComparesTheValues) {
+  BinnedSums flat(64, 2), step(64, 2);
+  for (int b = 0; b < 64; ++b) {
+    flat.bin(b)[0] = step.bin(b)[0] = 1.0;
+    flat.bin(b)[1] = 2.0;
+    step.bin(b)[1] = b < 32 ? 2.0 : 3.0;
+  }
+  EXPECT_TRUE(halves_check(flat, mean_of).stationary);
+  EXPECT_FALSE(halves_check(step, mean_of).stationary);
 }

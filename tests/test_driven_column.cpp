@@ -155,6 +155,22 @@ TEST(DrivenColumn, BitIdenticalFromSeed) {
 // Long validation (ctest -L long): a heavier elastic column, N = 10 at k = 1e5, where the
 // weight on the lowest contacts is 9 m g and the soft-overlap corrections to the hard-rod
 // equilibrium are visible; every profile and rate within 4 standard errors of the exact result.
+// The stationarity check on real runs: N = 25, e = 0.5 from its initial state with a window of
+// [0.2, 2.2] (the column is still falling onto the floor: n_coll and the mean height change
+// between the halves by many errors) is flagged; the same column after a transient of 20 with a
+// window of 100 passes.
+TEST(DrivenColumn, UnsettledWindowIsFlaggedAndSettledOnePasses) {
+  RunSpec s = spec_for(25, 0.5, 1e5, 2.0, 1);
+  s.transient = 0.2;
+  const RunResult early = run_driven_column(s);
+  EXPECT_FALSE(early.stationary());
+  EXPECT_FALSE(early.height_halves.stationary) << early.height_halves.z;
+  s.T = 100.0;
+  s.transient = 20.0;
+  const RunResult settled = run_driven_column(s);
+  EXPECT_TRUE(settled.stationary()) << settled.n_coll_halves.z << " " << settled.height_halves.z;
+}
+
 TEST(LongDrivenColumn, ElasticTenParticleColumnIsInGibbsEquilibrium) {
   RunSpec s = spec_for(10, 1.0, 1e5, 2e4, 17);
   s.transient = 1000.0;

@@ -1,5 +1,8 @@
 #include "analysis/blocking.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -92,6 +95,29 @@ Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_bl
   est.blocks = curve[chosen].blocks;
   est.converged = chosen < last && curve[last].blocks >= min_blocks;
   return est;
+}
+
+StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, double z_max) {
+  const int half = sums.bins() / 2, c = sums.components();
+  BinnedSums a(std::max(half, 1), c), b(std::max(half, 1), c);
+  for (int i = 0; i < half; ++i) {
+    std::copy_n(sums.bin(i), c, a.bin(i));
+    std::copy_n(sums.bin(half + i), c, b.bin(i));
+  }
+  StationarityCheck out;
+  // Halves of 8 bins or more: at least 4 blocks at the top level of each blocking curve.
+  out.first = blocked_estimate(a, f, std::min(16, std::max(2, half / 2)));
+  out.second = blocked_estimate(b, f, std::min(16, std::max(2, half / 2)));
+  const double err = std::hypot(out.first.error, out.second.error);
+  const double diff = out.second.value - out.first.value;
+  if (err > 0 && std::isfinite(err)) {
+    out.z = diff / err;
+    out.stationary = std::abs(out.z) <= z_max;
+  } else {
+    out.z = diff == 0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), diff);
+    out.stationary = diff == 0;
+  }
+  return out;
 }
 
 }  // namespace granchain

@@ -57,6 +57,19 @@ std::vector<BlockingLevel> blocking_curve(const BinnedSums& sums, const Estimato
 // Value on all data and its standard error from the plateau of the blocking curve.
 Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_blocks = 16);
 
+// Is the time average stationary over the window? The estimate on the first and on the second
+// half of the bins, each with its blocked error; z = (second - first) / sqrt(err1^2 + err2^2).
+// A window that starts before the system has settled, or over which it drifts, shows as |z|
+// beyond what the errors allow: stationary means |z| <= z_max (3: a settled system fails one run in
+// 370 when the errors are right). Where both halves have no spread (zero errors, e.g. no event at
+// all) the halves must be equal.
+struct StationarityCheck {
+  Estimate first, second;
+  double z = 0.0;
+  bool stationary = true;
+};
+StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, double z_max = 3.0);
+
 // Largest power of two <= min(limit, n), at least 1.
 int power_of_two_bins(long long n, int limit);
 

@@ -37,6 +37,16 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   if (!r.n_coll.converged)
     out += "  warning: the blocking analysis of n_coll found no plateau; T may be short compared with the\n"
            "           correlation time, so its error bar may be too small\n";
+  if (!r.stationary()) {
+    auto line = [](const char* what, const StationarityCheck& c) {
+      return fmt::format("           {}: first half {}, second half {} (z = {:.1f})\n", what,
+                         format_estimate(c.first), format_estimate(c.second), c.z);
+    };
+    out += "  warning: the measuring window is not stationary (the halves differ by more than 3 standard\n"
+           "           errors): the column had not settled, or drifts; the errors are not to be trusted\n";
+    if (!r.n_coll_halves.stationary) out += line("n_coll", r.n_coll_halves);
+    if (!r.height_halves.stationary) out += line("mean height", r.height_halves);
+  }
   int unconverged = 0;
   for (const ParticleProfile& q : r.profiles)
     unconverged += !q.z_mean.converged + !q.z_std.converged + !q.kinetic.converged;

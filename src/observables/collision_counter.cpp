@@ -30,6 +30,10 @@ Estimate CollisionCounter::collision_rate_per_particle(int N) const {
   return blocked_estimate(sums_, [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); });
 }
 
+StationarityCheck CollisionCounter::collision_rate_stationarity(int N) const {
+  return halves_check(sums_, [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); });
+}
+
 Estimate CollisionCounter::floor_hit_rate() const {
   return blocked_estimate(sums_, [](std::span<const double> s) { return s[kFloor] / s[kTime]; });
 }

@@ -19,6 +19,8 @@ class CollisionCounter final : public EventSink {
 
   // n_coll = (pp + floor) / (N T) with its blocked standard error.
   Estimate collision_rate_per_particle(int N) const;
+  // Halves check (analysis/blocking.hpp) of n_coll over the window.
+  StationarityCheck collision_rate_stationarity(int N) const;
   // Floor hits per unit time.
   Estimate floor_hit_rate() const;
   // Particle-particle collisions per unit time (all pairs together).

@@ -22,6 +22,17 @@ void ProfileSampler::sample(const ChainState& s) {
   ++taken_;
 }
 
+StationarityCheck ProfileSampler::height_stationarity() const {
+  const int n = n_;
+  double ref = 0.0;
+  for (double z : z_ref_) ref += z / n;
+  return halves_check(sums_, [n, ref](std::span<const double> s) {
+    double dz = 0.0;
+    for (int i = 0; i < n; ++i) dz += s[1 + 3 * i];
+    return ref + dz / (n * s[0]);
+  });
+}
+
 std::vector<ParticleProfile> ProfileSampler::profiles() const {
   std::vector<ParticleProfile> out(n_);
   const double half_m = 0.5 * m_;

@@ -23,6 +23,9 @@ class ProfileSampler {
   void sample(const ChainState& s);
   std::int64_t samples() const { return taken_; }
   std::vector<ParticleProfile> profiles() const;
+  // Halves check (analysis/blocking.hpp) of the column's mean height, the average of z_i over
+  // the particles: a column still settling or drifting changes it between the window's halves.
+  StationarityCheck height_stationarity() const;
 
  private:
   // components per bin: sample count, then per particle: sum dz, sum dz^2, sum v^2,

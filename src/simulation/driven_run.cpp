@@ -83,6 +83,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.particle_collisions = counter.particle_collisions();
   r.floor_hits = counter.floor_hits();
   r.profiles = sampler.profiles();
+  r.n_coll_halves = counter.collision_rate_stationarity(spec.params.N);
+  r.height_halves = sampler.height_stationarity();
   const EngineCounters c = engine->counters();
   r.steps = c.steps;
   r.events = c.contact_ends + c.floor_hits;

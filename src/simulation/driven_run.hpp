@@ -36,6 +36,11 @@ struct RunResult {
   std::uint64_t particle_collisions = 0;  // in the window
   std::uint64_t floor_hits = 0;           // in the window
   std::vector<ParticleProfile> profiles;
+  // Is the window stationary? n_coll and the column's mean height compared between the window's
+  // two halves (analysis/blocking.hpp, halves_check); a run that fails is still a result, but its
+  // error bars are not to be trusted (the summary warns, the JSON and the store keep the verdict).
+  StationarityCheck n_coll_halves, height_halves;
+  bool stationary() const { return n_coll_halves.stationary && height_halves.stationary; }
 
   std::uint64_t steps = 0;        // engine steps, transient included
   std::uint64_t events = 0;       // contact ends + floor hits, transient included

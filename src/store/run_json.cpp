@@ -54,6 +54,13 @@ json run_result_to_json(const RunResult& r) {
                                {"floor_hits", r.floor_hits}}},
               {"profiles", profiles},
               {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}}}};
+  auto halves = [](const StationarityCheck& c) {
+    return json{{"first", c.first.value}, {"first_err", c.first.error}, {"second", c.second.value},
+                {"second_err", c.second.error}, {"z", c.z}, {"stationary", c.stationary}};
+  };
+  j["stationarity"] = {{"stationary", r.stationary()},
+                       {"n_coll", halves(r.n_coll_halves)},
+                       {"mean_height", halves(r.height_halves)}};
   if (r.spec.engine.audit) j["audit"] = {{"instants", r.audit_instants}, {"values", r.audit_values}, {"wrong_sign", 0}};
   return j;
 }
@@ -112,6 +119,23 @@ RunResult run_result_from_json(const json& j) {
     r.profiles.push_back(ParticleProfile{Estimate{real_or(q, "z_mean", nan), real_or(q, "z_mean_err", nan), 0, false},
                                          Estimate{real_or(q, "z_std", nan), real_or(q, "z_std_err", nan), 0, false},
                                          Estimate{real_or(q, "K", nan), real_or(q, "K_err", nan), 0, false}});
+  }
+  // Runs stored before the stationarity check have none: they read back as stationary with z = NaN.
+  auto halves = [nan](const json& h) {
+    StationarityCheck c;
+    c.first.value = real_or(h, "first", nan);
+    c.first.error = real_or(h, "first_err", nan);
+    c.second.value = real_or(h, "second", nan);
+    c.second.error = real_or(h, "second_err", nan);
+    c.z = real_or(h, "z", nan);
+    c.stationary = h.at("stationary").get<bool>();
+    return c;
+  };
+  if (j.contains("stationarity")) {
+    r.n_coll_halves = halves(j.at("stationarity").at("n_coll"));
+    r.height_halves = halves(j.at("stationarity").at("mean_height"));
+  } else {
+    r.n_coll_halves.z = r.height_halves.z = nan;
   }
   const json& c = j.at("cost");
   r.steps = c.at("steps").get<std::uint64_t>();
