@@ -378,6 +378,16 @@ ReplicaEstimate over_replicas(const std::vector<Estimate>& xs) {
   return {mean, one, one / std::sqrt(R)};
 }
 
+// Phi^-1(p) of the standard normal, by bisection on erfc (tests only).
+double normal_quantile(double p) {
+  double lo = -10, hi = 10;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 // z of one reference run against the replica mean; the reference run's error is at least the
 // replicas' spread (same physics, same run length).
 double z_against(const ReplicaEstimate& ex, const Estimate& ref) {
@@ -429,11 +439,15 @@ TEST(LongExactEngine, AgreesStatisticallyWithReferenceOnTheGrid) {
                     ex_cell.c_str(), cell(paper.n_coll).c_str(), z_paper, cell(fine.n_coll).c_str(), z_fine,
                     cell(located.n_coll).c_str(), z_loc, beyond3, 3 * N, zmax);
         std::fflush(stdout);
-        if (beyond3 > std::max(1, 3 * N / 25)) std::printf("%s", per_particle.c_str());
+        // The 3N profile values of a column are strongly correlated (a column that sits a little
+        // higher in the one reference run moves every <z_i> together), so the number beyond 3 sigma
+        // says little; the largest |z| is tested, against the Bonferroni bound for 3N values at a
+        // false-alarm probability of 1e-3 per cell: |z| < Phi^-1(1 - 0.0005 / (3N)) (3.87 for
+        // N = 3, 4.35 for N = 25), which holds whatever the correlation.
+        const double zbound = normal_quantile(1.0 - 0.0005 / (3 * N));
+        if (zmax >= zbound || beyond3 > std::max(1, 3 * N / 25)) std::printf("%s", per_particle.c_str());
         EXPECT_LT(std::abs(z_loc), 3.0) << "N=" << N << " e=" << e << " k=" << k;
-        // 3N profile values: at most ~1% may exceed 3 sigma by chance; none should exceed 4.5.
-        EXPECT_LE(beyond3, std::max(1, 3 * N / 25)) << "N=" << N << " e=" << e << " k=" << k;
-        EXPECT_LT(zmax, 4.5) << "N=" << N << " e=" << e << " k=" << k;
+        EXPECT_LT(zmax, zbound) << "N=" << N << " e=" << e << " k=" << k;
       }
     }
   }
