@@ -253,7 +253,11 @@ TEST_F(SweepCli, ReproducesTheSchematicFiguresFromTrajectories) {
 TEST_F(SweepCli, PrintedSweepsFillTheStoreTheFigureReuses) {
   const CliResult p = run("reproduce --figure fig4 --print-sweeps");
   ASSERT_EQ(p.exit_code, 0) << p.err;
-  const std::string line = p.out.substr(0, p.out.find('\n'));
+  // Each command follows a comment line with its predicted cost.
+  const std::size_t at = p.out.find("granchain sweep");
+  ASSERT_NE(at, std::string::npos) << p.out;
+  EXPECT_EQ(p.out.rfind("# 400 points, predicted ", at), 0u) << p.out;
+  const std::string line = p.out.substr(at, p.out.find('\n', at) - at);
   ASSERT_EQ(line, "granchain sweep --N 3,4,5,6 --e 0.05:1.0:0.05 --k 1e4:1e8:x10 --T 1000 --T0 1") << p.out;
   EXPECT_NE(p.out.find("# 400 distinct points"), std::string::npos) << p.out;
   // Run as printed (400 runs, about 10 s), then the figure finds every point stored.

@@ -123,12 +123,18 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
       const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}", b.N, b.e, b.k, b.T, b.T0);
       if (!seen.insert(line).second) continue;
       blocks.push_back(b);
-      fmt::print("{}\n", line);
+      double seconds = 0.0;
+      const std::vector<SweepPoint> points = grid_points({b});
+      for (const SweepPoint& p : points) seconds += p.cost;
+      fmt::print("# {} points, predicted {:.2g} CPU-hours (sweep/cost_model.hpp)\n{}\n", points.size(), seconds / 3600, line);
     }
   }
-  fmt::print("# {} distinct points; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
+  double total = 0.0;
+  const std::vector<SweepPoint> all = blocks.empty() ? std::vector<SweepPoint>{} : grid_points(blocks);
+  for (const SweepPoint& p : all) total += p.cost;
+  fmt::print("# {} distinct points, predicted {:.2g} CPU-hours in all; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
              "granchain reproduce --figure {} --preset {} --db STORE\n",
-             blocks.empty() ? 0 : grid_points(blocks).size(), flags.figure, flags.preset);
+             all.size(), total / 3600, flags.figure, flags.preset);
   return kExitOk;
 }
 

@@ -51,17 +51,6 @@ std::uint64_t point_seed(std::uint64_t base_seed, const RunSpec& spec, int repli
   return derive_seed(h, static_cast<std::uint64_t>(replica)) >> 1;  // 63 bits: fits SQLite's INTEGER
 }
 
-double estimate_cost_seconds(const RunSpec& s) {
-  const double particle_time = s.params.N * (s.T + s.transient);
-  // Collisions per particle and unit time of the paper's column, roughly (Fig. 4): ~10 when
-  // uncollapsing, rising as e falls; event-driven costs per collision rise in the condensed state.
-  const double rate_guess = 10.0 + 120.0 * (1.0 - s.params.e);
-  if (is_hard_sphere_engine(s.engine.name)) return 3e-7 * particle_time * rate_guess;
-  if (s.engine.name == "exact") return 1e-6 * particle_time * rate_guess * (s.params.e < 0.8 ? 4.0 : 1.0);
-  const double tau_c = contact_law(s.params).tau_c;
-  return 2e-8 * particle_time * s.engine.dt_factor / tau_c;
-}
-
 std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   if (def.replicas < 1) throw InputError("--replicas must be an integer 1 <= replicas <= 1000000");
   std::map<std::string, RawValue> scalar;  // non-grid parameters, passed as given

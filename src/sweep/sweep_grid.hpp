@@ -10,6 +10,7 @@
 
 #include "cli/run_options.hpp"
 #include "simulation/driven_run.hpp"
+#include "sweep/cost_model.hpp"
 
 namespace granchain {
 
@@ -28,17 +29,13 @@ struct SweepPoint {
   RunSpec spec;                 // complete, seed included
   int replica = 0;              // 0 .. replicas-1
   std::string key;              // identity of the run in the store (simulation/run_key.hpp)
-  double cost = 0.0;            // estimated seconds of one core (see estimate_cost_seconds)
+  double cost = 0.0;            // estimated seconds of one core (sweep/cost_model.hpp)
 };
 
 // Seed of a sweep point: SplitMix64 of (base seed, FNV-1a hash of the point's key without its
 // seed, replica), kept to 63 bits. Depends on nothing else (not on thread, rank, shard or order).
 std::uint64_t point_seed(std::uint64_t base_seed, const RunSpec& spec_without_seed, int replica);
 
-// A rough single-core cost of the run in seconds, used only to start the longest points first:
-// event-driven engines cost per collision (N (T + transient) n_coll, with n_coll guessed from e),
-// the time-stepped reference per step (N (T + transient) dt-factor / tau_c).
-double estimate_cost_seconds(const RunSpec& spec);
 
 // Expands the grid (validating every point as `granchain run` would; InputError on bad input)
 // and orders it longest first, ties by key. The hard engine ignores the k list (its k is

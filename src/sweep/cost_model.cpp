@@ -1,0 +1,48 @@
+#include "sweep/cost_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engines/engine_factory.hpp"
+#include "model/chain_parameters.hpp"
+
+namespace granchain {
+
+namespace {
+
+// `/usr/bin/python3 bench/fit_cost_model.py sample.txt --runs runs.txt --seeds odd` (2026-11-23, the
+// development machine's one core): sample.txt from `bash bench/paper_cost.sh --list sample.txt`
+// (396 points of the paper preset, all N and k), runs.txt from `bash bench/cost_model_check.sh
+// data/paper/paper.db --list runs.txt` (whole runs of the paper preset stored so far, those with odd
+// seeds; the even ones check the model). Order of exact_log_rate's features.
+constexpr double kExactCoefficients[13] = {-15.2647,  2.00404,    0.0539814, 0.0579728,  0.710096,
+                                           -0.131494, -0.0393103, 0.0806748, 0.0312736,  -0.0668121,
+                                           -0.0654709, 0.00563043, -0.431402};
+constexpr double kCalibratedNMin = 3, kCalibratedNMax = 150, kDecadesAbove1e5 = 5;
+constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysis of a short run
+
+// The features of bench/fit_cost_model.py, same order.
+double exact_log_rate(double N, double e, double k, double T0) {
+  const double n = std::clamp(N, kCalibratedNMin, kCalibratedNMax);
+  const double lN = std::log(n);
+  const double x = std::log1p(n * (1.0 - e));
+  const double lk = std::clamp(std::log10(k) - 5.0, 0.0, kDecadesAbove1e5);
+  const double f[13] = {1.0,    lN,         lN * lN,    x,      x * x,   x * x * x, lk,
+                        lk * x, lk * x * x, lk * lN,    x * lN, lk * lk, std::log(T0)};
+  double s = 0.0;
+  for (int j = 0; j < 13; ++j) s += kExactCoefficients[j] * f[j];
+  return s + std::log(N / n);  // beyond the box: proportional to N
+}
+
+}  // namespace
+
+double estimate_cost_seconds(const RunSpec& s) {
+  const ChainParameters& p = s.params;
+  const double time = s.T + s.transient;
+  if (is_hard_sphere_engine(s.engine.name)) return kRunOverheadSeconds + 3e-7 * p.N * time * (10.0 + 120.0 * (1.0 - p.e));
+  if (s.engine.name == "exact") return kRunOverheadSeconds + time * std::exp(exact_log_rate(p.N, p.e, p.k, p.kT0));
+  const double steps = time * s.engine.dt_factor / contact_law(p).tau_c;
+  return kRunOverheadSeconds + steps * (5e-9 * p.N + 4e-8);
+}
+
+}  // namespace granchain

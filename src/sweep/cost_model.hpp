@@ -1,0 +1,23 @@
+#pragma once
+// What a driven-column run costs: seconds of one core of the development machine, used to start
+// the longest points first, for the ETA of sweeps and for the cost a dry run or
+// `reproduce --print-sweeps` announces. Calibrated on timed runs (docs/benchmarks.md, "A cost model
+// that knows k"), not a physical law; another machine scales it by a constant.
+#include "simulation/driven_run.hpp"
+
+namespace granchain {
+
+// Seconds for the whole run (transient + T), the run's fixed overhead included.
+//  - exact engine: ln(seconds per unit time) is a quadratic-to-cubic form in ln N, x =
+//    ln(1 + N (1 - e)) (the paper's scaling variable N (1 - e): the uncollapsing regime is
+//    x < ln(1 + A), A ~ 2.6) and log10 k, fitted by bench/fit_cost_model.py on 432 points of the
+//    paper's grids. Inside the calibrated box (3 <= N <= 150, 1e5 <= k <= 1e10) it predicts
+//    186 of the 187 points timed above 0.05 s within a factor of 2. Outside the box N and k are
+//    held at its edge and the cost scaled by N / N_edge: a rough guess.
+//  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
+//    (measured: 4.8e-9 .. 2.2e-8 s per particle step from N = 50 down to N = 3).
+//  - hard-sphere engine: not calibrated; about 3e-7 s per collision with a guessed collision
+//    rate of 10 + 120 (1 - e) per particle and unit time.
+double estimate_cost_seconds(const RunSpec& spec);
+
+}  // namespace granchain
