@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "analysis/collapse_regimes.hpp"
+#include "analysis/critical_restitution.hpp"
 #include "model/random.hpp"
 
 using namespace granchain;
@@ -115,6 +117,58 @@ TEST(CollapseRegimes, CriticalRestitutionWhereTheLogSlopeVanishes) {
   EXPECT_FALSE(e_c1_from_b({{0.05, 1.00, 0.01}, {0.10, 0.98, 0.01}, {0.15, 0.97, 0.01}}).found);
   // No positive slope anywhere: nothing to find.
   EXPECT_FALSE(e_c1_from_b({{0.9, 0.0, 0.1}, {0.95, 0.01, 0.1}}).found);
+}
+
+// Curves n_coll(k) of N = 25 on the paper's k grid and fig5's e grid, with e_c1 = 0.900: below it
+// n = n0 + b log10 k with b = 1.5 N^(5/2) (e_c1 - e)^2 (Eq. b_e_N), and at every e a finite-k
+// approach n_inf - c k^(-1/2) (c = 50: a slope of about 0.02 per decade over k >= 1e6, as measured
+// at e = 1), each point with Gaussian noise of 0.05; the square law holds only near e_c1 (a 30 %
+// correction 0.1 below it). The estimate with the residual subtracted finds
+// e_c1 within its total error; the systematic part is not zero; the classification boundary
+// lies just below the true value. Without the finite-k term the estimate is as good.
+std::vector<Curve> ec1_curves(double ec, double c, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<double> es;
+  for (double e = 0.80; e < 0.9005; e += 0.01) es.push_back(e);
+  for (double e = 0.872; e < 0.9005; e += 0.002) es.push_back(e);
+  for (double e : {0.92, 0.94, 0.96, 1.0}) es.push_back(e);
+  std::vector<Curve> curves;
+  for (double e : es) {
+    // Eq. b_e_N's square law only near e_c1: a 30 % correction at e_c1 - e = 0.1.
+    const double b = e < ec ? 1.5 * std::pow(25.0, 2.5) * (ec - e) * (ec - e) * (1.0 + 3.0 * (ec - e)) : 0.0;
+    Curve cu{e, {}};
+    for (double k : kGrid) {
+      const double n = 10.0 + b * std::log10(k) - c / std::sqrt(k);
+      cu.n_coll_of_k.push_back({k, n + 0.05 * rng.normal(), 0.05});
+    }
+    curves.push_back(cu);
+  }
+  return curves;
+}
+
+TEST(CriticalRestitution, FoundFromTheApproachOfTheSlopeWithItsSystematicError) {
+  for (double c : {50.0, 0.0}) {
+    const E_c1Estimate x = estimate_e_c1(ec1_curves(0.900, c, 21), 25, 1e6);
+    ASSERT_TRUE(x.e_c1.found) << "c = " << c;
+    EXPECT_NEAR(x.e_c1.value, 0.900, 3 * x.e_c1.error) << "c = " << c << ": " << x.e_c1.method;
+    EXPECT_LT(x.e_c1.error, 0.01) << x.e_c1.method;
+    EXPECT_GT(x.systematic, 0.0);
+    EXPECT_EQ(x.variants, 12);
+    ASSERT_TRUE(x.has_boundary);
+    // Just below e_c1 the slope (1.5 N^(5/2) (e_c1 - e)^2, 0.075 per decade at e = 0.896) is too
+    // small for the noise to classify: the boundary lies below e_c1, within a few grid steps.
+    EXPECT_LE(x.last_collapsing_e, 0.900 + 1e-9);
+    EXPECT_GE(x.first_uncollapsing_e, 0.890 - 1e-9);
+    EXPECT_LE(x.first_uncollapsing_e, 0.920 + 1e-9);
+    std::printf("c = %g: e_c1 = %.4f +- %.4f (stat %.4f, syst %.4f, %d of %d variants), boundary %.3f | %.3f, b_res %.4f +- %.4f\n",
+                c, x.e_c1.value, x.e_c1.error, x.statistical, x.systematic, x.variants_found, x.variants,
+                x.last_collapsing_e, x.first_uncollapsing_e, x.residual_b, x.residual_b_error);
+    // The finite-k slope: that of n_inf - c k^(-1/2) fitted over k >= 1e6 (0.011 per decade at c = 50).
+    std::vector<DataPoint> approach;
+    for (double k : kGrid)
+      if (k >= 1e6) approach.push_back({k, -c / std::sqrt(k), 0.05});
+    EXPECT_NEAR(x.residual_b, std::max(0.0, fit_log_k(approach).b), 3 * x.residual_b_error);
+  }
 }
 
 TEST(CollapseRegimes, SecondCriticalRestitutionIsBracketed) {

@@ -32,20 +32,19 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   for (const auto& [key, by_e] : groups) {
     FamilyAnalysis fam;
     std::tie(fam.engine, fam.N, fam.kT0) = key;
-    std::vector<DataPoint> b_of_e;
+    std::vector<Curve> all_curves;
     std::vector<double> es;
     std::vector<Regime> regimes;
     for (const auto& [e, by_k] : by_e) {
       CurveAnalysis curve;
       curve.e = e;
       for (const auto& [k, acc] : by_k) curve.n_coll_of_k.push_back({k, acc.second / acc.first, 1.0 / std::sqrt(acc.first)});
+      all_curves.push_back({e, curve.n_coll_of_k});
       int asymptotic = 0;
       for (const auto& p : curve.n_coll_of_k) asymptotic += p.x >= k_min;
       if (asymptotic >= 3) {
         curve.c = classify(curve.n_coll_of_k, k_min);
         curve.classified = true;
-        // e_c1 is where b vanishes: an uncollapsing curve counts as b = 0 (it brackets the root).
-        b_of_e.push_back({e, curve.c.regime == Regime::Uncollapsing ? 0.0 : curve.c.log_fit.b, curve.c.log_fit.b_error});
         es.push_back(e);
         regimes.push_back(curve.c.regime);
         if (table1_e(e) && curve.c.power_fit.alpha_error > 0)
@@ -53,10 +52,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       }
       fam.curves.push_back(std::move(curve));
     }
-    if (!b_of_e.empty()) {
-      // The critical region's width scales as 1/N (Eq. e-fit): fit and search within 2/N of the
-      // last positive slope (at most 0.05).
-      fam.e_c1 = e_c1_from_b(b_of_e, std::min(0.05, 2.0 / fam.N));
+    if (!es.empty()) {
+      // e_c1 from the approach of b to zero, with its systematic error (critical_restitution.hpp).
+      fam.e_c1_estimate = estimate_e_c1(all_curves, fam.N, k_min);
+      fam.e_c1 = fam.e_c1_estimate.e_c1;
       fam.e_c2 = e_c2_from_regimes(es, regimes);
     }
     if (!fam.alphas.empty()) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/collapse_regimes.hpp"
+#include "analysis/critical_restitution.hpp"
 
 namespace granchain::analysis {
 
@@ -30,7 +31,8 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
   int N = 0;
   double kT0 = 1;
   std::vector<CurveAnalysis> curves;  // e ascending
-  CriticalValue e_c1, e_c2;
+  CriticalValue e_c1, e_c2;  // e_c1: estimate.e_c1 (its error includes the systematic part)
+  E_c1Estimate e_c1_estimate;
   // Table 1: alpha at e = 0.1, 0.2, 0.3, 0.4 (those measured) and their mean.
   std::vector<DataPoint> alphas;  // x = e
   bool has_alpha_bar = false;

@@ -73,6 +73,21 @@ nlohmann::json critical_json(const analysis::CriticalValue& c) {
   return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}, {"method", c.method}};
 }
 
+nlohmann::json e_c1_json(const analysis::E_c1Estimate& x) {
+  nlohmann::json j = critical_json(x.e_c1);
+  if (j.is_null()) j = nlohmann::json::object();
+  j["statistical"] = x.e_c1.found ? nlohmann::json(x.statistical) : nlohmann::json(nullptr);
+  j["systematic"] = x.e_c1.found ? nlohmann::json(x.systematic) : nlohmann::json(nullptr);
+  j["variants"] = x.variants;
+  j["variants_found"] = x.variants_found;
+  j["residual_b"] = x.residual_b;
+  j["residual_b_err"] = x.residual_b_error;
+  j["boundary"] = x.has_boundary ? nlohmann::json{{"last_collapsing_e", x.last_collapsing_e},
+                                                  {"first_uncollapsing_e", x.first_uncollapsing_e}}
+                                 : nlohmann::json(nullptr);
+  return j;
+}
+
 std::string plus_minus(double v, double e, int digits) {
   if (!std::isfinite(v)) return "-";
   return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
@@ -130,6 +145,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
       curves.push_back(cj);
     }
     j["families"].push_back({{"engine", f.engine}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
+                             {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
                              {"e_c2", critical_json(f.e_c2)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
@@ -180,6 +196,15 @@ std::string analysis_text(const StoreAnalysis& a) {
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
                f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
                f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-");
+    const analysis::E_c1Estimate& x = f.e_c1_estimate;
+    if (f.e_c1.found)
+      out += fmt::format("    e_c1: {:.4f} ± {:.4f} (statistical) ± {:.4f} (systematic, {} of {} variants, range {:.4f} .. {:.4f}); "
+                         "finite-k slope of the uncollapsing side b_res = {}\n",
+                         f.e_c1.value, x.statistical, x.systematic, x.variants_found, x.variants, f.e_c1.low, f.e_c1.high,
+                         plus_minus(x.residual_b, x.residual_b_error, 4));
+    if (x.has_boundary)
+      out += fmt::format("    classification boundary: last collapsing e = {:g}, first uncollapsing e = {:g}\n",
+                         x.last_collapsing_e, x.first_uncollapsing_e);
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
