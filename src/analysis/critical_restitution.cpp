@@ -14,6 +14,7 @@ struct Slopes {
   double residual = 0, residual_error = 0;
   bool has_boundary = false;
   double last_collapsing = 0, first_uncollapsing = 0;
+  std::vector<double> isolated;  // collapsing e above the boundary, counted as uncollapsing
 };
 
 Slopes slopes_over(const std::vector<Curve>& curves, int N, double k_min, double z) {
@@ -30,12 +31,21 @@ Slopes slopes_over(const std::vector<Curve>& curves, int N, double k_min, double
     regimes.emplace_back(c.e, unc);
   }
   std::sort(regimes.begin(), regimes.end());
-  // The boundary: the largest collapsing e, and the next e of the grid (uncollapsing by then).
-  for (std::size_t i = 0; i < regimes.size(); ++i) {
-    if (regimes[i].second) continue;
-    s.last_collapsing = regimes[i].first;
-    s.has_boundary = i + 1 < regimes.size();
-    if (s.has_boundary) s.first_uncollapsing = regimes[i + 1].first;
+  // The boundary: the top of the collapsing e contiguous from the smallest e, and the next e of the
+  // grid. Collapsing e further up, isolated among uncollapsing ones, are counted apart (a slope
+  // 2 errors above zero happens by chance in one curve of 40) and enter the fit as b = 0.
+  std::size_t i = 0;
+  while (i < regimes.size() && !regimes[i].second) ++i;
+  if (i > 0) {
+    s.last_collapsing = regimes[i - 1].first;
+    s.has_boundary = i < regimes.size();
+    if (s.has_boundary) s.first_uncollapsing = regimes[i].first;
+  }
+  for (std::size_t j = 0; j < s.b_of_e.size(); ++j) {
+    if (s.has_boundary && !s.uncollapsing[j] && s.b_of_e[j].x > s.first_uncollapsing) {
+      s.uncollapsing[j] = true;
+      s.isolated.push_back(s.b_of_e[j].x);
+    }
   }
   // The finite-k residual: weighted mean b of the uncollapsing curves at least 1/N (the width of
   // the critical region, Eq. e-fit) above the last collapsing e; closer ones may still collapse
@@ -87,6 +97,7 @@ E_c1Estimate estimate_e_c1(const std::vector<Curve>& curves, int N, double k_min
       out.has_boundary = s.has_boundary;
       out.last_collapsing_e = s.last_collapsing;
       out.first_uncollapsing_e = s.first_uncollapsing;
+      out.isolated_collapsing_e = s.isolated;
     }
     if (s.b_of_e.empty()) continue;
     for (const bool subtract : {true, false}) {

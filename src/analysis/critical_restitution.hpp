@@ -14,8 +14,10 @@
 //     subtraction enter the spread too.
 // The central value is the variant (k_min, 1/N, subtracted); the systematic error is half the range
 // of all variants found, added in quadrature to the central variant's statistical error. Beside it
-// comes the classification boundary: the largest e classified logarithmic or power-law and the
-// smallest e above it classified uncollapsing (at k >= k_min).
+// comes the classification boundary (at k >= k_min): the top of the run of collapsing e
+// (logarithmic or power-law) that starts at the smallest e, and the next e of the grid. Collapsing
+// e further up, isolated among uncollapsing ones (chance: 2 errors), are listed and enter the fit
+// as b = 0.
 #include <vector>
 
 #include "analysis/collapse_regimes.hpp"
@@ -34,6 +36,7 @@ struct E_c1Estimate {
   double residual_b = 0, residual_b_error = 0;  // finite-k slope of the uncollapsing side (k >= k_min)
   bool has_boundary = false;
   double last_collapsing_e = 0, first_uncollapsing_e = 0;
+  std::vector<double> isolated_collapsing_e;  // collapsing e above the boundary (taken as b = 0)
 };
 
 E_c1Estimate estimate_e_c1(const std::vector<Curve>& curves, int N, double k_min, double z = 2.0);

@@ -83,7 +83,8 @@ nlohmann::json e_c1_json(const analysis::E_c1Estimate& x) {
   j["residual_b"] = x.residual_b;
   j["residual_b_err"] = x.residual_b_error;
   j["boundary"] = x.has_boundary ? nlohmann::json{{"last_collapsing_e", x.last_collapsing_e},
-                                                  {"first_uncollapsing_e", x.first_uncollapsing_e}}
+                                                  {"first_uncollapsing_e", x.first_uncollapsing_e},
+                                                  {"isolated_collapsing_e", x.isolated_collapsing_e}}
                                  : nlohmann::json(nullptr);
   return j;
 }
@@ -202,9 +203,13 @@ std::string analysis_text(const StoreAnalysis& a) {
                          "finite-k slope of the uncollapsing side b_res = {}\n",
                          f.e_c1.value, x.statistical, x.systematic, x.variants_found, x.variants, f.e_c1.low, f.e_c1.high,
                          plus_minus(x.residual_b, x.residual_b_error, 4));
-    if (x.has_boundary)
-      out += fmt::format("    classification boundary: last collapsing e = {:g}, first uncollapsing e = {:g}\n",
-                         x.last_collapsing_e, x.first_uncollapsing_e);
+    if (x.has_boundary) {
+      std::string isolated;
+      for (double e : x.isolated_collapsing_e) isolated += fmt::format("{}{:g}", isolated.empty() ? "" : ", ", e);
+      out += fmt::format("    classification boundary: last collapsing e = {:g}, first uncollapsing e = {:g}{}\n",
+                         x.last_collapsing_e, x.first_uncollapsing_e,
+                         isolated.empty() ? "" : "; isolated collapsing e above it (taken as b = 0): " + isolated);
+    }
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
