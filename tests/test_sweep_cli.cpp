@@ -289,6 +289,11 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
   const CliResult again = run("reproduce --figure fig9 --preset smoke --out figs");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.err.find("already in reproduce.db, 0 to run"), std::string::npos) << again.err;
+  // fig10's free-space counts are recomputed on a repeat but stored once.
+  const auto collapse_rows = query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs");
+  EXPECT_GT(collapse_rows, 0);
+  ASSERT_EQ(run("reproduce --figure fig10 --preset smoke --out figs -q").exit_code, 0);
+  EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs"), collapse_rows);
 }
 
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law

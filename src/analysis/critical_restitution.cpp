@@ -31,15 +31,19 @@ Slopes slopes_over(const std::vector<Curve>& curves, int N, double k_min, double
     regimes.emplace_back(c.e, unc);
   }
   std::sort(regimes.begin(), regimes.end());
-  // The boundary: the top of the collapsing e contiguous from the smallest e, and the next e of the
-  // grid. Collapsing e further up, isolated among uncollapsing ones, are counted apart (a slope
-  // 2 errors above zero happens by chance in one curve of 40) and enter the fit as b = 0.
-  std::size_t i = 0;
-  while (i < regimes.size() && !regimes[i].second) ++i;
-  if (i > 0) {
-    s.last_collapsing = regimes[i - 1].first;
-    s.has_boundary = i < regimes.size();
-    if (s.has_boundary) s.first_uncollapsing = regimes[i].first;
+  // The boundary, scanning down from the largest e: the first collapsing e that is not isolated
+  // (an isolated one has uncollapsing neighbours on both sides: a slope 2 errors above zero happens
+  // by chance in one curve of 40), and the next e of the grid above it. Isolated collapsing e above
+  // the boundary are counted apart and enter the fit as b = 0.
+  const std::size_t n = regimes.size();
+  for (std::size_t i = n; i-- > 0;) {
+    if (regimes[i].second) continue;
+    const bool isolated = i > 0 && i + 1 < n && regimes[i - 1].second && regimes[i + 1].second;
+    if (isolated) continue;
+    s.last_collapsing = regimes[i].first;
+    s.has_boundary = i + 1 < n;
+    if (s.has_boundary) s.first_uncollapsing = regimes[i + 1].first;
+    break;
   }
   for (std::size_t j = 0; j < s.b_of_e.size(); ++j) {
     if (s.has_boundary && !s.uncollapsing[j] && s.b_of_e[j].x > s.first_uncollapsing) {

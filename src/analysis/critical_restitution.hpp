@@ -14,10 +14,10 @@
 //     subtraction enter the spread too.
 // The central value is the variant (k_min, 1/N, subtracted); the systematic error is half the range
 // of all variants found, added in quadrature to the central variant's statistical error. Beside it
-// comes the classification boundary (at k >= k_min): the top of the run of collapsing e
-// (logarithmic or power-law) that starts at the smallest e, and the next e of the grid. Collapsing
-// e further up, isolated among uncollapsing ones (chance: 2 errors), are listed and enter the fit
-// as b = 0.
+// comes the classification boundary (at k >= k_min): scanning down from the largest e, the first
+// collapsing e (logarithmic or power-law) that is not isolated between two uncollapsing ones, and
+// the next e of the grid. Isolated collapsing e above it (chance: 2 errors) are listed and enter
+// the fit as b = 0.
 #include <vector>
 
 #include "analysis/collapse_regimes.hpp"

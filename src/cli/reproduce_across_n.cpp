@@ -84,13 +84,19 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
   const SweepAnalysis s = across_n(o);
   const analysis::AcrossN* x = across_at(s.a, 1.0);
   nlohmann::json plot = {{"families", nlohmann::json::array()}, {"A1", nullptr}, {"A2", nullptr}};
-  std::string table = "| N | e_c1 measured | paper | e_c2 measured | paper | partially condensed at e |\n|---|---|---|---|---|---|\n";
+  std::string table =
+      "| N | e_c1 measured (b → 0) | classification boundary | paper | e_c2 measured | paper | partially condensed at e |\n"
+      "|---|---|---|---|---|---|---|\n";
   for (const auto& f : s.a.report.families) {
     const std::vector<double> cond = condensed_es(s.a, f);
     plot["families"].push_back({{"N", f.N}, {"e_c1", critical_json(f.e_c1)}, {"e_c2", critical_json(f.e_c2)}, {"condensed_e", cond}});
     const std::string paper1 = f.N == 25 ? "0.894" : f.N == 50 ? "0.944" : fmt::format("{:.3f} (fit)", 1 - 2.6 / f.N);
     const std::string paper2 = f.N == 25 ? "0.878 – 0.884" : f.N == 50 ? "0.936 – 0.942" : fmt::format("{:.3f} (fit)", 1 - 3.0 / f.N);
-    table += fmt::format("| {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), paper1, bracket_text(f.e_c2), paper2,
+    const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
+    const std::string boundary =
+        x1.has_boundary ? fmt::format("{:.4f} – {:.4f}", x1.last_collapsing_e, x1.first_uncollapsing_e) : "not found";
+    table += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), boundary, paper1,
+                         bracket_text(f.e_c2), paper2,
                          cond.empty() ? "none" : fmt::format("{:g} – {:g} ({} of the grid)", cond.front(), cond.back(), cond.size()));
   }
   std::string fits;

@@ -328,6 +328,27 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
   }
 }
 
+bool ResultsStore::has_collapse(const CollapseSpec& s) {
+  SqlStatement q(db_, R"sql(SELECT 1 FROM collapse_runs WHERE setup = ? AND engine = ? AND N = ? AND e = ? AND k = ? AND
+      a = ? AND v0 = ? AND dv0 = ? AND stop_rule = ? AND realizations = ? AND seed = ? AND dt_factor = ? AND tc = ?
+      LIMIT 1)sql");
+  int c = 1;
+  q.bind(c++, std::string(setup_name(s.setup)));
+  q.bind(c++, s.engine.name);
+  q.bind(c++, static_cast<std::int64_t>(s.params.N));
+  q.bind(c++, s.params.e);
+  q.bind(c++, s.params.k);
+  q.bind(c++, s.launch.a);
+  q.bind(c++, s.launch.v0);
+  q.bind(c++, s.launch.dv0);
+  q.bind(c++, std::string(rule_name(s.rule)));
+  q.bind(c++, static_cast<std::int64_t>(s.realizations));
+  q.bind(c++, static_cast<std::int64_t>(s.seed));
+  q.bind(c++, s.engine.dt_factor);
+  q.bind(c++, s.engine.hard.tc);
+  return q.row();
+}
+
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   return in_transaction([&] {
     SqlStatement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,

@@ -58,6 +58,10 @@ class ResultsStore {
   // Appends one collapse count (granchain collapse) with its per-realisation counts, in one
   // transaction, and returns its id.
   std::int64_t insert_collapse(const CollapseResult& r);
+  // Does the store hold a collapse count of exactly this definition (setup, engine, N, e, k,
+  // launch, stop rule, realisations, seed, dt-factor, TC time)? The count is a deterministic
+  // function of it, so a second copy would add nothing.
+  bool has_collapse(const CollapseSpec& s);
   std::int64_t count_runs();
   sqlite3* handle() { return db_; }
 
