@@ -35,9 +35,9 @@ def main(argv):
             lows.append(1 - max(f["condensed_e"]))
             highs.append(1 - min(f["condensed_e"]))
     if len(xs) >= 2:
-        ax.fill_between(xs, lows, highs, color="0.85", label="partially condensed (K_i inversion)")
+        ax.fill_between(xs, lows, highs, color="0.85", label="partially condensed (K_i dip, hot layer above)")
     elif xs:
-        ax.vlines(xs, lows, highs, color="0.7", lw=6, label="partially condensed (K_i inversion)")
+        ax.vlines(xs, lows, highs, color="0.7", lw=6, label="partially condensed (K_i dip, hot layer above)")
     # The paper's own values for N = 25 and 50 (its Table 1, k_B T0 = 1), open symbols.
     for N, ec1, lo2, hi2 in ((25, 0.894, 0.878, 0.884), (50, 0.944, 0.936, 0.942)):
         ax.plot(1.0 / N, 1 - ec1, "o", mfc="none", color="tab:blue", ms=7)

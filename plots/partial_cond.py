@@ -4,7 +4,8 @@
 Usage: /usr/bin/python3 plots/partial_cond.py fig8.json PREFIX   -> PREFIX.png and PREFIX.pdf
 (a) sigma_i / sigma_0,i (sigma_0,i of the exact elastic column) and (b) K_i against the particle
 index i, one curve per e; error bars one standard error; dashed: K_i = k_B T0 / 2 of the elastic
-column; log scales. Curves flagged partially condensed (K_i inversion) are drawn solid, the others dotted.
+column; log scales. Partially condensed columns (a K_i dip with an interior hot layer above it) are drawn
+solid, columns condensed as a whole (a dip, only the surface warmer) dashed, the others dotted.
 """
 import sys
 
@@ -23,8 +24,9 @@ def main(argv):
         p = c["profile"]
         i = np.arange(1, len(p["K"]) + 1)
         color = plt.cm.coolwarm(j / max(1, len(curves) - 1))
-        style = "-" if c["condensed"] else ":"
-        label = "e = %g%s" % (c["e"], " (inversion)" if c["condensed"] else "")
+        state = c.get("state", "partial" if c["condensed"] else "none")
+        style = {"partial": "-", "whole": "--"}.get(state, ":")
+        label = "e = %g%s" % (c["e"], {"partial": " (partially condensed)", "whole": " (condensed)"}.get(state, ""))
         if p["sigma0"]:
             s0 = np.array(p["sigma0"])
             axes[0].errorbar(i, np.array(p["sigma"]) / s0, yerr=np.array(p["sigma_err"]) / s0, fmt="o" + style, ms=2.5,

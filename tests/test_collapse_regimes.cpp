@@ -287,3 +287,36 @@ TEST(PartialCondensation, InversionAboveADipNearTheFloor) {
   EXPECT_EQ(s.sigma_dip, 6);
   EXPECT_NEAR(s.sigma_ratio_min, 0.15, 1e-12);
 }
+
+// Partial or whole: profiles shaped like the quick preset's N = 25 columns at k = 1e8. A cold dip
+// near the floor under a fluid layer that is warmest inside the column and cooler again towards the
+// top (e = 0.88: dip at 4, maximum at 13) is partially condensed; a column cold throughout whose K_i
+// rises only towards its free surface (e = 0.7) is condensed as a whole; a monotonically cooling
+// one (e = 0.92) is neither. A hot layer whose top particle is as warm as its maximum, with a cooler
+// stretch in between (e = 0.84), is partial too.
+TEST(PartialCondensation, PartialHasAnInteriorHotLayerWholeOnlyAWarmSurface) {
+  std::vector<ParticleValue> partial, whole, none;
+  for (int i = 1; i <= 25; ++i) {
+    const double x = i;
+    partial.push_back({i <= 4 ? 0.027 - 0.0035 * (i - 1) : 0.0165 + 0.02 * std::exp(-(x - 13) * (x - 13) / 40.0), 0.0005});
+    whole.push_back({i <= 3 ? 0.018 - 0.004 * (i - 1) : 0.008 + 0.027 * std::exp(-(25 - x) / 1.5), 0.0005});
+    none.push_back({0.135 * std::exp(-0.027 * (x - 1)), 0.0005});
+  }
+  const CondensationCheck p = detect_partial_condensation(partial);
+  EXPECT_TRUE(p.condensed);
+  EXPECT_EQ(p.state, CondensedState::Partial);
+  EXPECT_NEAR(p.hot, 13, 2);
+  EXPECT_GT(p.hot_drop, 3 * p.hot_drop_error);
+  const CondensationCheck w = detect_partial_condensation(whole);
+  EXPECT_TRUE(w.condensed);
+  EXPECT_EQ(w.state, CondensedState::Whole);
+  EXPECT_EQ(detect_partial_condensation(none).state, CondensedState::None);
+  std::vector<ParticleValue> surface_warm = partial;
+  for (int i = 20; i <= 24; ++i) surface_warm[i - 1].value = 0.02 - 0.001 * (i - 19);
+  surface_warm[24].value = 0.0365;  // the top particle as warm as the layer's maximum
+  EXPECT_EQ(detect_partial_condensation(surface_warm).state, CondensedState::Partial);
+  // The interior maximum must beat the top by 3 errors: with errors 20 times larger it does not.
+  for (auto& k : partial) k.error = 0.01;
+  EXPECT_NE(detect_partial_condensation(partial).state, CondensedState::Partial);
+  EXPECT_STREQ(condensed_state_name(CondensedState::Partial), "partial");
+}

@@ -1,9 +1,19 @@
 #include "analysis/condensation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace granchain::analysis {
+
+const char* condensed_state_name(CondensedState s) {
+  switch (s) {
+    case CondensedState::Whole: return "whole";
+    case CondensedState::Partial: return "partial";
+    case CondensedState::None: break;
+  }
+  return "none";
+}
 
 CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& K, const std::vector<ParticleValue>& sigma,
                                               const std::vector<double>& sigma0, double z) {
@@ -26,6 +36,26 @@ CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& 
       }
     }
   c.condensed = c.rise > z * c.rise_error && c.rise > 0;
+  // The hot layer: a particle j above the dip and below the free surface (the top max(2, N/10))
+  // warmer than some particle m above it, the pair with the largest drop in standard errors.
+  const std::size_t n = K.size();
+  const std::size_t surface = std::max<std::size_t>(2, n / 10);
+  double best_drop = -INFINITY;
+  for (std::size_t j = static_cast<std::size_t>(c.dip); j + surface < n; ++j)
+    for (std::size_t m = j + 1; m < n; ++m) {
+      const double drop = K[j].value - K[m].value, error = std::hypot(K[j].error, K[m].error);
+      const double pull = error > 0 ? drop / error : (drop > 0 ? INFINITY : 0.0);
+      if (pull > best_drop) {
+        best_drop = pull;
+        c.hot = static_cast<int>(j) + 1;
+        c.cooler_above = static_cast<int>(m) + 1;
+        c.hot_drop = drop;
+        c.hot_drop_error = error;
+      }
+    }
+  if (c.condensed) {
+    c.state = c.hot > 0 && c.hot_drop > z * c.hot_drop_error ? CondensedState::Partial : CondensedState::Whole;
+  }
   if (!sigma.empty() && sigma.size() == K.size() && sigma0.size() == K.size()) {
     c.sigma_ratio_min = sigma[0].value / sigma0[0];
     c.sigma_dip = 1;

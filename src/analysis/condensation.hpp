@@ -11,8 +11,23 @@ struct ParticleValue {
   double value = 0, error = 0;
 };
 
+// Which condensed state a column with a K_i inversion is in (paper Sec. III.C.2): partially
+// condensed, a cold dense layer near the floor under a hotter fluid layer (0.84 <~ e <~ 0.90 at
+// N = 25), or condensed as a whole, cold throughout with only its free surface warmer.
+enum class CondensedState { None, Whole, Partial };
+const char* condensed_state_name(CondensedState s);  // "none", "whole", "partial"
+
 struct CondensationCheck {
   bool condensed = false;     // an inversion of K_i above its dip, by more than z standard errors
+  // Partial when a particle above the dip and below the free surface (the top max(2, N/10)
+  // particles) is warmer than some particle above it by more than z standard errors: an interior
+  // hot layer, cooler again towards the top. `hot` and `cooler_above` (1-based) are the pair with
+  // the largest such drop, hot_drop = K_hot - K_cooler_above. Whole for any other inversion, where
+  // K_i only rises from the dip towards the free surface (the warmest part of a condensed column);
+  // None without an inversion.
+  CondensedState state = CondensedState::None;
+  int hot = 0, cooler_above = 0;
+  double hot_drop = 0, hot_drop_error = 0;
   int dip = 0;                // 1-based particle i of the most significant rise K_j - K_i (j > i)
   double rise = 0, rise_error = 0;  // that rise and its standard error
   int sigma_dip = 0;          // 1-based particle of the lowest sigma_i / sigma_0,i (0 without sigma_0)

@@ -56,14 +56,14 @@ std::string bracket_text(const analysis::CriticalValue& c) {
   return c.found ? fmt::format("{:.4f} – {:.4f}", c.low, c.high) : "not found";
 }
 
-// The e of the grid at which the profiles show the partially condensed state (K_i inversion),
-// within the critical region (c <= 5).
+// The e of the grid at which the profiles show the partially condensed state (a K_i dip with an
+// interior hot layer above it, analysis/condensation.hpp), within the critical region (c <= 5).
 std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f) {
   std::vector<double> out;
   const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
   if (fc == a.condensation.end()) return out;
   for (const auto& [e, c] : fc->second)
-    if (c.check.condensed && f.N * (1.0 - e) <= kCriticalC.front() + 1e-9) out.push_back(e);
+    if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= kCriticalC.front() + 1e-9) out.push_back(e);
   return out;
 }
 

@@ -27,12 +27,18 @@ std::string fig5_table(const StoreAnalysis& a) {
   md += fmt::format("| e_c2 (convex/concave) | {} | 0.878 – 0.884 |\n",
                     f.e_c2.found ? fmt::format("{:.3f} – {:.3f}", f.e_c2.low, f.e_c2.high) : "not found");
   md += fmt::format("| ᾱ (mean α at e = 0.1 … 0.4) | {} | 0.20 |\n", f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error, 3) : "-");
-  std::string cond;
+  std::string partial, whole;
   const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
   if (fc != a.condensation.end())
-    for (const auto& [e, c] : fc->second)
-      if (c.check.condensed && e > 0.7) cond += fmt::format("{}{:g}", cond.empty() ? "" : ", ", e);
-  md += fmt::format("| K_i inversion (partially condensed), e > 0.7 | {} | 0.84 ≲ e ≲ 0.90 |\n\n", cond.empty() ? "none" : cond);
+    for (const auto& [e, c] : fc->second) {
+      if (!c.check.condensed || e <= 0.7) continue;
+      std::string& list = c.check.state == analysis::CondensedState::Partial ? partial : whole;
+      list += fmt::format("{}{:g}", list.empty() ? "" : ", ", e);
+    }
+  md += fmt::format("| partially condensed (K_i dip, interior hot layer above), e > 0.7 | {} | 0.84 ≲ e ≲ 0.90 |\n",
+                    partial.empty() ? "none" : partial);
+  md += fmt::format("| condensed as a whole (K_i dip, only the surface warmer), e > 0.7 | {} | e ≲ 0.84 |\n\n",
+                    whole.empty() ? "none" : whole);
   return md;
 }
 
@@ -98,19 +104,24 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
   const auto failures = run_missing_points(points, o, o.figure);
   const StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));
   nlohmann::json plot = {{"N", 25}, {"k", grid.k}, {"curves", nlohmann::json::array()}};
-  std::string table = "| e | K_i dip at particle | largest rise of K_i above it | inversion (> 3σ) | min σ_i/σ_0,i (particle) |\n"
-                      "|---|---|---|---|---|\n";
+  std::string table =
+      "| e | K_i dip at particle | largest rise of K_i above it | inversion (> 3σ) | hot layer: particle, cooler one above, drop | state | "
+      "min σ_i/σ_0,i (particle) |\n|---|---|---|---|---|---|---|\n";
   std::string condensed;
   for (const auto& fam : a.json["families"])
     for (const auto& c : fam["curves"]) {
       if (!c.contains("profile")) continue;
       const auto& pc = c["partial_condensation"];
-      plot["curves"].push_back({{"e", c["e"]}, {"profile", c["profile"]}, {"condensed", pc["condensed"]}});
+      plot["curves"].push_back(
+          {{"e", c["e"]}, {"profile", c["profile"]}, {"condensed", pc["condensed"]}, {"state", pc["state"]}});
       const double e = c["e"].get<double>();
       const bool yes = pc["condensed"].get<bool>();
       if (yes) condensed += fmt::format("{}{:g}", condensed.empty() ? "" : ", ", e);
-      table += fmt::format("| {:g} | {} | {} | {} | {} |\n", e, pc["K_dip_particle"].get<int>(),
+      table += fmt::format("| {:g} | {} | {} | {} | {}, {}, {} | {} | {} |\n", e, pc["K_dip_particle"].get<int>(),
                            plus_minus(pc["K_rise"].get<double>(), pc["K_rise_err"].get<double>(), 4), yes ? "yes" : "no",
+                           pc["K_hot_particle"].get<int>(), pc["K_cooler_above_particle"].get<int>(),
+                           plus_minus(pc["K_hot_drop"].get<double>(), pc["K_hot_drop_err"].get<double>(), 4),
+                           pc["state"].get<std::string>(),
                            pc["sigma_ratio_min"].is_null() ? "-"
                                                           : fmt::format("{:.3f} ({})", pc["sigma_ratio_min"].get<double>(),
                                                                         pc["sigma_ratio_min_particle"].get<int>()));

@@ -128,7 +128,11 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
       const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
       if (fc != a.condensation.end() && fc->second.count(c.e)) {
         const Condensation& pc = fc->second.at(c.e);
-        cj["partial_condensation"] = {{"k", pc.k}, {"condensed", pc.check.condensed}, {"K_dip_particle", pc.check.dip},
+        cj["partial_condensation"] = {{"k", pc.k}, {"condensed", pc.check.condensed},
+                                      {"state", analysis::condensed_state_name(pc.check.state)},
+                                      {"K_hot_particle", pc.check.hot}, {"K_cooler_above_particle", pc.check.cooler_above},
+                                      {"K_hot_drop", pc.check.hot_drop}, {"K_hot_drop_err", pc.check.hot_drop_error},
+                                      {"K_dip_particle", pc.check.dip},
                                       {"K_rise", pc.check.rise}, {"K_rise_err", pc.check.rise_error},
                                       {"sigma_ratio_min", pc.check.sigma_dip ? nlohmann::json(pc.check.sigma_ratio_min) : nlohmann::json(nullptr)},
                                       {"sigma_ratio_min_particle", pc.check.sigma_dip}};
@@ -176,7 +180,11 @@ std::string analysis_text(const StoreAnalysis& a) {
     auto inversion = [&](double e) -> std::string {
       if (fc == a.condensation.end() || !fc->second.count(e)) return "-";
       const auto& ch = fc->second.at(e).check;
-      return ch.condensed ? fmt::format("yes: dip at {}, rise {}", ch.dip, plus_minus(ch.rise, ch.rise_error)) : "no";
+      if (!ch.condensed) return "no";
+      if (ch.state == analysis::CondensedState::Partial)
+        return fmt::format("partial: dip at {}, rise {}; hot layer at {}, cooler at {} by {}", ch.dip,
+                           plus_minus(ch.rise, ch.rise_error), ch.hot, ch.cooler_above, plus_minus(ch.hot_drop, ch.hot_drop_error));
+      return fmt::format("whole: dip at {}, rise {}", ch.dip, plus_minus(ch.rise, ch.rise_error));
     };
     for (const auto& c : f.curves) {
       if (!c.classified) {
@@ -188,10 +196,14 @@ std::string analysis_text(const StoreAnalysis& a) {
                  plus_minus(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
     }
     if (fc != a.condensation.end()) {
-      std::string flagged;
-      for (const auto& [e, pc] : fc->second)
-        if (pc.check.condensed) flagged += fmt::format("{}{:g}", flagged.empty() ? "" : ", ", e);
-      out += fmt::format("  K_i inversion (partially condensed state, Fig. partial_cond) at e = {}\n", flagged.empty() ? "none" : flagged);
+      std::string partial, whole;
+      for (const auto& [e, pc] : fc->second) {
+        std::string& list = pc.check.state == analysis::CondensedState::Partial ? partial : whole;
+        if (pc.check.condensed) list += fmt::format("{}{:g}", list.empty() ? "" : ", ", e);
+      }
+      out += fmt::format("  K_i inversion: partially condensed (interior hot layer, Fig. partial_cond) at e = {}; "
+                         "condensed as a whole (only the surface warmer) at e = {}\n",
+                         partial.empty() ? "none" : partial, whole.empty() ? "none" : whole);
     }
     out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
