@@ -320,3 +320,25 @@ TEST(PartialCondensation, PartialHasAnInteriorHotLayerWholeOnlyAWarmSurface) {
   EXPECT_NE(detect_partial_condensation(partial).state, CondensedState::Partial);
   EXPECT_STREQ(condensed_state_name(CondensedState::Partial), "partial");
 }
+
+// Local exponents: a power law n = 2 k^0.2 gives 0.2 on every decade; a logarithm n = 5 + log10 k
+// gives exponents falling as 1 / (ln 10 n); the mean over two curves weighs each by its error.
+TEST(CollapseRegimes, LocalExponentsAreConstantForAPowerLawAndFallForALogarithm) {
+  std::vector<DataPoint> power, logarithm;
+  for (double k : kGrid) {
+    power.push_back({k, 2.0 * std::pow(k, 0.2), 0.01});
+    logarithm.push_back({k, 5.0 + std::log10(k), 0.01});
+  }
+  const auto lp = local_exponents(power);
+  ASSERT_EQ(lp.size(), kGrid.size() - 1);
+  for (const auto& l : lp) EXPECT_NEAR(l.alpha, 0.2, 1e-12);
+  const auto ll = local_exponents(logarithm);
+  for (std::size_t i = 0; i + 1 < ll.size(); ++i) EXPECT_GT(ll[i].alpha, ll[i + 1].alpha);
+  // Between k = 1e5 and 1e6: ln(11/10) / ln 10.
+  EXPECT_NEAR(ll[0].alpha, std::log(11.0 / 10.0) / std::log(10.0), 1e-12);
+  EXPECT_NEAR(ll[0].error, std::hypot(0.01 / 10.0, 0.01 / 11.0) / std::log(10.0), 1e-15);
+  const auto m = mean_local_exponents({lp, lp});
+  ASSERT_EQ(m.size(), lp.size());
+  EXPECT_NEAR(m[0].alpha, 0.2, 1e-12);
+  EXPECT_NEAR(m[0].error, lp[0].error / std::sqrt(2.0), 1e-12);
+}

@@ -1,5 +1,7 @@
 #include "analysis/collapse_regimes.hpp"
 
+#include <map>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -256,6 +258,30 @@ Mean mean_exponent(const std::vector<DataPoint>& alphas) {
   const double scatter = alphas.size() > 1 ? std::sqrt(ss / (n - 1) / n) : 0.0;
   m.error = std::max(propagated, scatter);
   return m;
+}
+
+std::vector<LocalExponent> local_exponents(const std::vector<DataPoint>& n) {
+  std::vector<LocalExponent> out;
+  for (std::size_t i = 0; i + 1 < n.size(); ++i) {
+    const DataPoint &a = n[i], &b = n[i + 1];
+    if (!(a.y > 0 && b.y > 0 && b.x > a.x)) continue;
+    const double span = std::log(b.x / a.x);
+    out.push_back({a.x, b.x, std::log(b.y / a.y) / span, std::hypot(a.error / a.y, b.error / b.y) / span});
+  }
+  return out;
+}
+
+std::vector<LocalExponent> mean_local_exponents(const std::vector<std::vector<LocalExponent>>& curves) {
+  std::map<std::pair<double, double>, std::vector<DataPoint>> by_interval;
+  for (const auto& c : curves)
+    for (const LocalExponent& l : c)
+      if (l.error > 0) by_interval[{l.k1, l.k2}].push_back({0.0, l.alpha, l.error});
+  std::vector<LocalExponent> out;
+  for (const auto& [k, xs] : by_interval) {
+    const Mean m = mean_exponent(xs);
+    out.push_back({k.first, k.second, m.value, m.error});
+  }
+  return out;
 }
 
 }  // namespace granchain::analysis

@@ -122,4 +122,16 @@ struct Mean {
 };
 Mean mean_exponent(const std::vector<DataPoint>& alphas);
 
+// The local exponent between neighbouring k of n_coll(k) (k ascending): alpha = ln(n2/n1) /
+// ln(k2/k1), error from the two relative errors. A global power fit averages these; their trend
+// with k says whether the power law holds (constant) or the slope drifts.
+struct LocalExponent {
+  double k1 = 0, k2 = 0, alpha = 0, error = 0;
+};
+std::vector<LocalExponent> local_exponents(const std::vector<DataPoint>& n_coll_of_k);
+// Per interval of k, the weighted mean over several curves' local exponents (intervals matched by
+// k1, k2; those missing in some curve are averaged over the others). Error: the larger of the
+// propagated one and the scatter's standard error, as mean_exponent.
+std::vector<LocalExponent> mean_local_exponents(const std::vector<std::vector<LocalExponent>>& curves);
+
 }  // namespace granchain::analysis

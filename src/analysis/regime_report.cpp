@@ -35,6 +35,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     std::vector<Curve> all_curves;
     std::vector<double> es;
     std::vector<Regime> regimes;
+    std::vector<std::vector<LocalExponent>> table1_locals;
     for (const auto& [e, by_k] : by_e) {
       CurveAnalysis curve;
       curve.e = e;
@@ -47,8 +48,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         curve.classified = true;
         es.push_back(e);
         regimes.push_back(curve.c.regime);
-        if (table1_e(e) && curve.c.power_fit.alpha_error > 0)
+        if (table1_e(e) && curve.c.power_fit.alpha_error > 0) {
           fam.alphas.push_back({e, curve.c.power_fit.alpha, curve.c.power_fit.alpha_error});
+          table1_locals.push_back(local_exponents(curve.n_coll_of_k));
+        }
       }
       fam.curves.push_back(std::move(curve));
     }
@@ -61,6 +64,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     if (!fam.alphas.empty()) {
       fam.alpha_bar = mean_exponent(fam.alphas);
       fam.has_alpha_bar = true;
+      fam.local_alpha_bar = mean_local_exponents(table1_locals);
     }
     report.families.push_back(std::move(fam));
   }

@@ -37,6 +37,9 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
   std::vector<DataPoint> alphas;  // x = e
   bool has_alpha_bar = false;
   Mean alpha_bar;
+  // The local exponent per interval of k, averaged over the same e as alpha_bar (all k, not only
+  // the asymptotic range): how the slope behind alpha_bar drifts with k.
+  std::vector<LocalExponent> local_alpha_bar;
 };
 
 struct AcrossN {  // one (engine, kT0), over N

@@ -89,6 +89,23 @@ nlohmann::json e_c1_json(const analysis::E_c1Estimate& x) {
   return j;
 }
 
+std::string local_exponents_text(const std::vector<analysis::LocalExponent>& l) {
+  auto k_text = [](double k) {  // 1e5 rather than 1e+05 for powers of ten
+    const double p = std::round(std::log10(k));
+    return std::abs(k - std::pow(10.0, p)) <= 1e-9 * k ? fmt::format("1e{:g}", p) : fmt::format("{:g}", k);
+  };
+  std::string out;
+  for (const auto& x : l)
+    out += fmt::format("{}{}–{}: {}", out.empty() ? "" : ", ", k_text(x.k1), k_text(x.k2), plus_minus(x.alpha, x.error));
+  return out.empty() ? "-" : out;
+}
+
+nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& l) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& x : l) j.push_back({{"k1", x.k1}, {"k2", x.k2}, {"alpha", x.alpha}, {"error", x.error}});
+  return j;
+}
+
 std::string plus_minus(double v, double e, int digits) {
   if (!std::isfinite(v)) return "-";
   return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
@@ -151,6 +168,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     }
     j["families"].push_back({{"engine", f.engine}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
                              {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
+                             {"local_alpha_bar", local_exponents_json(f.local_alpha_bar)},
                              {"e_c2", critical_json(f.e_c2)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
@@ -209,6 +227,8 @@ std::string analysis_text(const StoreAnalysis& a) {
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
                f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
                f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-");
+    if (f.has_alpha_bar)
+      out += fmt::format("    local alpha per interval of k (mean over e = 0.1..0.4): {}\n", local_exponents_text(f.local_alpha_bar));
     const analysis::E_c1Estimate& x = f.e_c1_estimate;
     if (f.e_c1.found)
       out += fmt::format("    e_c1: {:.4f} ± {:.4f} (statistical) ± {:.4f} (systematic, {} of {} variants, range {:.4f} .. {:.4f}); "

@@ -38,6 +38,9 @@ nlohmann::json critical_json(const analysis::CriticalValue& c);
 
 // "v ± e" with `digits` decimals, or "-" when v is not finite.
 std::string plus_minus(double v, double e, int digits = 3);
+// "1e5–1e6: 0.27 ± 0.01, 1e6–1e7: ..." (local exponents per interval of k), "-" when empty.
+std::string local_exponents_text(const std::vector<analysis::LocalExponent>& l);
+nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& l);
 
 // Throws StoreError when the store cannot be read.
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
