@@ -328,16 +328,15 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
   }
 }
 
-bool ResultsStore::has_collapse(const CollapseSpec& s) {
-  SqlStatement q(db_, R"sql(SELECT 1 FROM collapse_runs WHERE setup = ? AND engine = ? AND N = ? AND e = ? AND k = ? AND
-      a = ? AND v0 = ? AND dv0 = ? AND stop_rule = ? AND realizations = ? AND seed = ? AND dt_factor = ? AND tc = ?
-      LIMIT 1)sql");
-  int c = 1;
+namespace {
+
+// The columns that define a collapse count (setup .. tc, in the table's order), from index c on.
+void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
   q.bind(c++, std::string(setup_name(s.setup)));
   q.bind(c++, s.engine.name);
   q.bind(c++, static_cast<std::int64_t>(s.params.N));
   q.bind(c++, s.params.e);
-  q.bind(c++, s.params.k);
+  q.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)
   q.bind(c++, s.launch.a);
   q.bind(c++, s.launch.v0);
   q.bind(c++, s.launch.dv0);
@@ -346,6 +345,16 @@ bool ResultsStore::has_collapse(const CollapseSpec& s) {
   q.bind(c++, static_cast<std::int64_t>(s.seed));
   q.bind(c++, s.engine.dt_factor);
   q.bind(c++, s.engine.hard.tc);
+}
+
+}  // namespace
+
+bool ResultsStore::has_collapse(const CollapseSpec& s) {
+  SqlStatement q(db_, R"sql(SELECT 1 FROM collapse_runs WHERE setup = ? AND engine = ? AND N = ? AND e = ? AND k = ? AND
+      a = ? AND v0 = ? AND dv0 = ? AND stop_rule = ? AND realizations = ? AND seed = ? AND dt_factor = ? AND tc = ?
+      LIMIT 1)sql");
+  int c = 1;
+  bind_collapse_definition(q, c, s);
   return q.row();
 }
 
@@ -358,19 +367,7 @@ std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
     int c = 1;
     row.bind(c++, utc_now());
     row.bind(c++, std::string(code_version()));
-    row.bind(c++, std::string(setup_name(s.setup)));
-    row.bind(c++, s.engine.name);
-    row.bind(c++, static_cast<std::int64_t>(s.params.N));
-    row.bind(c++, s.params.e);
-    row.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)
-    row.bind(c++, s.launch.a);
-    row.bind(c++, s.launch.v0);
-    row.bind(c++, s.launch.dv0);
-    row.bind(c++, std::string(rule_name(s.rule)));
-    row.bind(c++, static_cast<std::int64_t>(s.realizations));
-    row.bind(c++, static_cast<std::int64_t>(s.seed));
-    row.bind(c++, s.engine.dt_factor);
-    row.bind(c++, s.engine.hard.tc);
+    bind_collapse_definition(row, c, s);
     row.bind(c++, r.law.tau_c);
     row.bind(c++, r.n_tot_mean);  // NaN (no realisation finished) is stored as NULL
     row.bind(c++, r.n_tot_error);
