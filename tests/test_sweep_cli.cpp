@@ -313,9 +313,14 @@ TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
         const double x = std::log10(k);
         r.n_coll.value = e == 0.3 ? 2.0 * std::pow(k, 0.2) : e == 0.86 ? 20.0 + x : 11.0 - 300.0 / std::sqrt(k);
         r.n_coll.error = 0.01;
+        // One run whose window failed its stationarity check: the analysis flags it.
+        if (e == 0.95 && k == 1e10) r.n_coll_halves.stationary = false;
         store.insert_run(r);
       }
   }
+  const CliResult flagged = run("analyze --db a.db");
+  EXPECT_NE(flagged.out.find("[!] window not stationary"), std::string::npos) << flagged.out;
+  EXPECT_NE(flagged.out.find("(e = 0.95, k = 1e+10)"), std::string::npos) << flagged.out;
   const CliResult r = run("analyze --db a.db --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -327,6 +332,9 @@ TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
   EXPECT_EQ(curves[1]["regime"], "logarithmic");
   EXPECT_NEAR(curves[1]["log_fit"]["b"].get<double>(), 1.0, 4 * curves[1]["log_fit"]["b_err"].get<double>());
   EXPECT_EQ(curves[2]["regime"], "uncollapsing");
+  EXPECT_TRUE(curves[0]["non_stationary_k"].empty());
+  ASSERT_EQ(curves[2]["non_stationary_k"].size(), 1u);
+  EXPECT_EQ(curves[2]["non_stationary_k"][0].get<double>(), 1e10);
   EXPECT_EQ(j["families"][0]["e_c2"]["low"], 0.3);
   EXPECT_EQ(j["families"][0]["e_c2"]["high"], 0.86);
   const CliResult text = run("analyze --db a.db --plot fig");

@@ -20,12 +20,14 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   // (engine, N, kT0) -> e -> k -> (sum w, sum w n)
   using Key = std::tuple<std::string, int, double>;
   std::map<Key, std::map<double, std::map<double, std::pair<double, double>>>> groups;
+  std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
   for (const NcollRun& r : runs) {
     if (!std::isfinite(r.k) || !(r.n_coll_err > 0) || !std::isfinite(r.n_coll)) continue;
     auto& acc = groups[{r.engine, r.N, r.kT0}][r.e][r.k];
     const double w = 1.0 / (r.n_coll_err * r.n_coll_err);
     acc.first += w;
     acc.second += w * r.n_coll;
+    if (!r.stationary) unsettled[{r.engine, r.N, r.kT0}][r.e].push_back(r.k);
   }
   RegimeReport report;
   report.k_min = k_min;
@@ -41,6 +43,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       curve.e = e;
       for (const auto& [k, acc] : by_k) curve.n_coll_of_k.push_back({k, acc.second / acc.first, 1.0 / std::sqrt(acc.first)});
       all_curves.push_back({e, curve.n_coll_of_k});
+      const auto u = unsettled.find(key);
+      if (u != unsettled.end() && u->second.count(e)) curve.non_stationary_k = u->second.at(e);
       int asymptotic = 0;
       for (const auto& p : curve.n_coll_of_k) asymptotic += p.x >= k_min;
       if (asymptotic >= 3) {

@@ -17,11 +17,13 @@ struct NcollRun {
   int N = 0;
   double kT0 = 1, e = 0, k = 0;
   double n_coll = 0, n_coll_err = 0;
+  bool stationary = true;  // the run's window passed its halves check (or the run predates it)
 };
 
 struct CurveAnalysis {  // one (engine, N, kT0, e)
   double e = 0;
   std::vector<DataPoint> n_coll_of_k;  // combined over runs, k ascending
+  std::vector<double> non_stationary_k;  // k of runs whose window failed the halves check
   bool classified = false;             // enough values of k in the asymptotic range
   Classification c;
 };

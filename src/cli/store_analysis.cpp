@@ -119,9 +119,10 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   std::vector<analysis::NcollRun> runs;
   for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
     if (row.at("setup") != "driven_column" || row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
+    const bool stationary = !row.contains("stationary") || row.at("stationary").is_null() || row.at("stationary").get<int>() != 0;
     runs.push_back({row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>(),
                     row.at("e").get<double>(), row.at("k").get<double>(), row.at("n_coll").get<double>(),
-                    row.at("n_coll_err").get<double>()});
+                    row.at("n_coll_err").get<double>(), stationary});
   }
   a.runs = runs.size();
   a.report = analysis::analyze_runs(runs, k_min);
@@ -133,7 +134,8 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     for (const auto& c : f.curves) {
       nlohmann::json pts = nlohmann::json::array();
       for (const auto& p : c.n_coll_of_k) pts.push_back({{"k", p.x}, {"n_coll", p.y}, {"error", p.error}});
-      nlohmann::json cj = {{"e", c.e}, {"n_coll_of_k", pts}, {"classified", c.classified}};
+      nlohmann::json cj = {{"e", c.e}, {"n_coll_of_k", pts}, {"classified", c.classified},
+                           {"non_stationary_k", c.non_stationary_k}};
       if (c.classified) {
         cj["regime"] = analysis::regime_name(c.c.regime);
         cj["log_fit"] = {{"a", c.c.log_fit.a}, {"a_err", c.c.log_fit.a_error}, {"b", c.c.log_fit.b}, {"b_err", c.c.log_fit.b_error},
@@ -204,6 +206,9 @@ std::string analysis_text(const StoreAnalysis& a) {
                            plus_minus(ch.rise, ch.rise_error), ch.hot, ch.cooler_above, plus_minus(ch.hot_drop, ch.hot_drop_error));
       return fmt::format("whole: dip at {}, rise {}", ch.dip, plus_minus(ch.rise, ch.rise_error));
     };
+    std::string unsettled;  // (e, k) of runs whose window failed the stationarity check
+    for (const auto& c : f.curves)
+      for (double k : c.non_stationary_k) unsettled += fmt::format("{}(e = {:g}, k = {:g})", unsettled.empty() ? "" : ", ", c.e, k);
     for (const auto& c : f.curves) {
       if (!c.classified) {
         out += fmt::format("{:>8.4g} {:>4} {:>14}\n", c.e, c.n_coll_of_k.size(), "(too few k)");
@@ -211,8 +216,11 @@ std::string analysis_text(const StoreAnalysis& a) {
       }
       out += fmt::format("{:>8.4g} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", c.e, c.n_coll_of_k.size(), analysis::regime_name(c.c.regime),
                  plus_minus(c.c.log_fit.b, c.c.log_fit.b_error), plus_minus(c.c.power_fit.alpha, c.c.power_fit.alpha_error),
-                 plus_minus(c.c.curvature, c.c.curvature_error, 4), inversion(c.e));
+                 plus_minus(c.c.curvature, c.c.curvature_error, 4), inversion(c.e) + (c.non_stationary_k.empty() ? "" : "  [!]"));
     }
+    if (!unsettled.empty())
+      out += fmt::format("  [!] window not stationary (n_coll or the mean height differ between its halves by > 3 errors; "
+                         "run longer or with a longer transient): {}\n", unsettled);
     if (fc != a.condensation.end()) {
       std::string partial, whole;
       for (const auto& [e, pc] : fc->second) {

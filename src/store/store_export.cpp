@@ -14,7 +14,11 @@ namespace {
 const char* source_sql(ExportTable t) {
   switch (t) {
     case ExportTable::Runs:
-      return "SELECT r.*, p.point_key, p.sweep_seed, p.replica FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
+      // stationary: the run's verdict on its window (1 or 0) from its JSON; NULL for runs stored
+      // before runs checked it.
+      return "SELECT r.*, p.point_key, p.sweep_seed, p.replica, "
+             "json_extract(r.result_json, '$.stationarity.stationary') AS stationary "
+             "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
     case ExportTable::Profiles:
       return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
              "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err, p.point_key "
