@@ -3,10 +3,15 @@
 
 Usage: /usr/bin/python3 plots/ncoll_panels.py analysis.json PREFIX
 For every (engine, N, T0) of the analysis writes PREFIX_N<N>_T0<T0>_<engine>.png and .pdf with
-(a) n_coll against log10 k for every e, with the fitted a + b log10 k where logarithmic,
-(b) log10 n_coll against log10 k, with the fitted c k^alpha where power-law,
-(c) n_coll against e for every k, with e_c1 and the e_c2 bracket marked.
-Error bars are one standard error. Prints the files written.
+(a) n_coll against log10 k for the critical region 1 - 5/N <= e <= 1 - 2.5/N (the paper's
+    0.80 ... 0.90 at N = 25), with the fitted a + b log10 k where logarithmic,
+(b) the same for 1 - 3.25/N <= e <= 1 - 2.5/N (0.87 ... 0.90 at N = 25),
+(c) log10 n_coll against log10 k for e = 0.1, 0.2, ..., 1.0, with the fitted c k^alpha where
+    power-law,
+(d) n_coll against e for every k, with e_c1 (and its error), the classification boundary and the
+    e_c2 bracket; an inset enlarges the critical region.
+A panel whose e range holds no curve shows every curve instead. Colours encode e (colour bars) in
+(a)-(c) and k in (d). Error bars are one standard error. Prints the files written.
 """
 import sys
 
@@ -15,58 +20,110 @@ import numpy as np
 from plot_common import load, plt, save, usage
 
 
+def arrays(c):
+    k = np.array([p["k"] for p in c["n_coll_of_k"]])
+    n = np.array([p["n_coll"] for p in c["n_coll_of_k"]])
+    s = np.array([p["error"] for p in c["n_coll_of_k"]])
+    return k, n, s
+
+
+def in_range(curves, lo, hi):
+    chosen = [c for c in curves if lo - 1e-9 <= c["e"] <= hi + 1e-9]
+    return chosen if chosen else curves
+
+
+def against_log_k(ax, curves, k_min, log_n, title, fig):
+    es = [c["e"] for c in curves]
+    lo, hi = min(es), max(es)
+    cmap = plt.get_cmap("viridis")
+    norm = plt.Normalize(lo, hi if hi > lo else lo + 1e-9)
+    for c in curves:
+        colour = cmap(norm(c["e"]))
+        k, n, s = arrays(c)
+        x = np.log10(k)
+        y, dy = (np.log10(n), s / (n * np.log(10))) if log_n else (n, s)
+        marker = "o" if not c.get("non_stationary_k") else "x"
+        ax.errorbar(x, y, yerr=dy, fmt=marker, ms=3, color=colour, capsize=2)
+        if c.get("classified"):
+            xa = x[k >= k_min] if np.any(k >= k_min) else x
+            xx = np.linspace(xa.min(), xa.max(), 50)  # the fit's own range
+            if not log_n and c["regime"] == "logarithmic":
+                ax.plot(xx, c["log_fit"]["a"] + c["log_fit"]["b"] * xx, "-", color=colour, lw=0.8)
+            if log_n and c["regime"] == "power-law":
+                pf = c["power_fit"]
+                ax.plot(xx, np.log10(pf["c"]) + pf["alpha"] * xx, "-", color=colour, lw=0.8)
+    sm = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
+    fig.colorbar(sm, ax=ax, label="e", fraction=0.05, pad=0.02)
+    ax.set_xlabel("log10 k")
+    ax.set_ylabel("log10 n_coll" if log_n else "n_coll")
+    ax.set_title(title, fontsize=9)
+
+
+def against_e(ax, family, curves, inset_range):
+    ks = sorted({p["k"] for c in curves for p in c["n_coll_of_k"]})
+    kmap = plt.get_cmap("plasma")
+    targets = [ax]
+    inset = None
+    if inset_range:
+        inset = ax.inset_axes([0.07, 0.56, 0.42, 0.3])  # between the curves of the two largest k
+        targets.append(inset)
+    for i, k in enumerate(ks):
+        pts = sorted((c["e"], p["n_coll"], p["error"]) for c in curves for p in c["n_coll_of_k"] if p["k"] == k)
+        e, n, s = (np.array(v) for v in zip(*pts))
+        colour = kmap(i / max(1, len(ks) - 1))
+        ax.errorbar(e, n, yerr=s, fmt="o-", ms=2.5, lw=0.8, color=colour, label="k = %.0e" % k, capsize=1.5)
+        if inset is not None:
+            sel = (e >= inset_range[0]) & (e <= inset_range[1])
+            inset.errorbar(e[sel], n[sel], yerr=s[sel], fmt="o-", ms=2, lw=0.7, color=colour, capsize=1)
+    for i, ec in enumerate(family.get("ec_lines", [])):  # Fig. cfe: e_c(3) ... e_c(N+1)
+        ax.axvline(ec, ls=":", color="0.4", lw=0.8, label="e_c(3..N+1)" if i == 0 else None)
+    est = family.get("e_c1_estimate") or {}
+    for t in targets:
+        first = t is ax
+        if family.get("e_c1"):
+            v, err = family["e_c1"]["value"], family["e_c1"]["error"]
+            t.axvline(v, ls="--", color="k", lw=0.8, label="e_c1 (b → 0)" if first else None)
+            t.axvspan(v - err, v + err, color="0.6", alpha=0.25, lw=0)
+        if est.get("boundary"):
+            b = est["boundary"]
+            t.axvspan(b["last_collapsing_e"], b["first_uncollapsing_e"], color="tab:green", alpha=0.35, lw=0,
+                      label="classification boundary" if first else None)
+        if family.get("e_c2"):
+            t.axvspan(family["e_c2"]["low"], family["e_c2"]["high"], color="0.85",
+                      label="e_c2 bracket" if first else None)
+    if inset is not None:
+        inset.set_xlim(*inset_range)
+        inset.tick_params(labelsize=6)
+    ax.set_xlabel("e")
+    ax.set_ylabel("n_coll")
+    ax.set_title("(d) n_coll against e", fontsize=9)
+    ax.legend(fontsize=6, loc="upper right")
+
+
 def draw(family, prefix, k_min):
     curves = [c for c in family["curves"] if c["n_coll_of_k"]]
     if not curves:
         return None
-    cmap = plt.get_cmap("viridis")
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    es = [c["e"] for c in curves]
-    lo, hi = min(es), max(es)
-    for c in curves:
-        colour = cmap(0.0 if hi == lo else (c["e"] - lo) / (hi - lo))
-        k = np.array([p["k"] for p in c["n_coll_of_k"]])
-        n = np.array([p["n_coll"] for p in c["n_coll_of_k"]])
-        s = np.array([p["error"] for p in c["n_coll_of_k"]])
-        x = np.log10(k)
-        label = "e = %g%s" % (c["e"], " (%s)" % c["regime"] if c.get("classified") else "")
-        axes[0].errorbar(x, n, yerr=s, fmt="o", ms=3, color=colour, label=label, capsize=2)
-        axes[1].errorbar(x, np.log10(n), yerr=s / (n * np.log(10)), fmt="o", ms=3, color=colour, capsize=2)
-        if c.get("classified"):
-            xa = x[k >= k_min] if np.any(k >= k_min) else x
-            xx = np.linspace(xa.min(), xa.max(), 50)  # the fit's own range
-            if c["regime"] == "logarithmic":
-                axes[0].plot(xx, c["log_fit"]["a"] + c["log_fit"]["b"] * xx, "-", color=colour, lw=0.8)
-            if c["regime"] == "power-law":
-                pf = c["power_fit"]
-                axes[1].plot(xx, np.log10(pf["c"]) + pf["alpha"] * xx, "-", color=colour, lw=0.8)
-    ks = sorted({p["k"] for c in curves for p in c["n_coll_of_k"]})
-    kmap = plt.get_cmap("plasma")
-    for i, k in enumerate(ks):
-        pts = [(c["e"], p["n_coll"], p["error"]) for c in curves for p in c["n_coll_of_k"] if p["k"] == k]
-        pts.sort()
-        e, n, s = (np.array(v) for v in zip(*pts))
-        axes[2].errorbar(e, n, yerr=s, fmt="o-", ms=3, lw=0.8, color=kmap(i / max(1, len(ks) - 1)),
-                         label="k = %.0e" % k, capsize=2)
-    for i, ec in enumerate(family.get("ec_lines", [])):  # Fig. cfe: e_c(3) ... e_c(N+1)
-        axes[2].axvline(ec, ls=":", color="0.4", lw=0.8, label="e_c(3..N+1)" if i == 0 else None)
-    if family.get("e_c1"):
-        axes[2].axvline(family["e_c1"]["value"], ls="--", color="k", lw=0.8, label="e_c1")
-    if family.get("e_c2"):
-        axes[2].axvspan(family["e_c2"]["low"], family["e_c2"]["high"], color="0.85", label="e_c2 bracket")
-    axes[0].set_xlabel("log10 k")
-    axes[0].set_ylabel("n_coll")
-    axes[0].set_title("(a) n_coll against log k", fontsize=9)
-    axes[1].set_xlabel("log10 k")
-    axes[1].set_ylabel("log10 n_coll")
-    axes[1].set_title("(b) log n_coll against log k", fontsize=9)
-    axes[2].set_xlabel("e")
-    axes[2].set_ylabel("n_coll")
-    axes[2].set_title("(c) n_coll against e", fontsize=9)
-    axes[0].legend(fontsize=6, ncol=2)
-    axes[2].legend(fontsize=6)
-    fig.suptitle("N = %d, k_B T0 = %g, engine %s" % (family["N"], family["T0"], family["engine"]), fontsize=10)
-    stem = "%s_N%d_T0%g_%s" % (prefix, family["N"], family["T0"], family["engine"])
+    N = family["N"]
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.8))
+    wide = in_range(curves, 1 - 5.0 / N, 1 - 2.5 / N)
+    narrow = in_range(curves, 1 - 3.25 / N, 1 - 2.5 / N)
+    tenths = [c for c in curves if abs(10 * c["e"] - round(10 * c["e"])) < 1e-9] or curves
+    against_log_k(axes[0], wide, k_min, False, "(a) e = %.3g … %.3g" % (min(c["e"] for c in wide), max(c["e"] for c in wide)), fig)
+    against_log_k(axes[1], narrow, k_min, False,
+                  "(b) e = %.3g … %.3g" % (min(c["e"] for c in narrow), max(c["e"] for c in narrow)), fig)
+    against_log_k(axes[2], tenths, k_min, True, "(c) log n_coll against log k, e = 0.1, 0.2, …", fig)
+    crit = [family["e_c1"]["value"]] if family.get("e_c1") else []
+    es = sorted(c["e"] for c in curves)
+    inset = None
+    if family.get("e_c2") or crit:
+        lo = min([family["e_c2"]["low"]] if family.get("e_c2") else crit) - 0.03
+        hi = max(crit + ([family["e_c2"]["high"]] if family.get("e_c2") else [])) + 0.03
+        if sum(1 for e in es if lo <= e <= hi) >= 3:
+            inset = (lo, hi)
+    against_e(axes[3], family, curves, inset)
+    fig.suptitle("N = %d, k_B T0 = %g, engine %s (x: window not stationary)" % (N, family["T0"], family["engine"]), fontsize=10)
+    stem = "%s_N%d_T0%g_%s" % (prefix, N, family["T0"], family["engine"])
     save(fig, stem)
     plt.close(fig)
     return stem + ".png"
