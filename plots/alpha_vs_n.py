@@ -4,7 +4,8 @@
 Usage: /usr/bin/python3 plots/alpha_vs_n.py fig9.json PREFIX   -> PREFIX.png and PREFIX.pdf
 The exponent alpha of n_coll ~ k^alpha at e = 0.1, 0.2, 0.3, 0.4 against log10 N (one standard
 error), the mean over the four e, its linear fit (solid) and the paper's 0.18 log10 N - 0.054
-(dashed, Eq. alphafit).
+(dashed, Eq. alphafit); beside it (b) the local exponent per interval of k, mean over the four e,
+against log10 N, one line per interval: a power law would put them on top of each other.
 """
 import sys
 
@@ -17,7 +18,7 @@ def main(argv):
     if usage(__doc__, argv, 2):
         return 2
     data = load(argv[1])
-    fig, ax = plt.subplots(figsize=(6.5, 5))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     markers = {0.1: "o", 0.2: "s", 0.3: "^", 0.4: "v"}
     logs = []
     for e, m in markers.items():
@@ -43,7 +44,24 @@ def main(argv):
                     label="fit: %.3f log10 N %+.3f" % (data["fit"]["slope"], data["fit"]["intercept"]))
     ax.set_xlabel("log10 N")
     ax.set_ylabel("alpha")
+    ax.set_title("(a) global fits", fontsize=9)
     ax.legend(fontsize=7)
+    # (b) local exponents per interval of k
+    intervals = sorted({(l["k1"], l["k2"]) for f in data["families"] for l in f.get("local_alpha_bar", [])})
+    cmap = plt.get_cmap("plasma")
+    for i, (k1, k2) in enumerate(intervals):
+        pts = sorted((np.log10(f["N"]), l["alpha"], l["error"]) for f in data["families"]
+                     for l in f.get("local_alpha_bar", []) if (l["k1"], l["k2"]) == (k1, k2))
+        if pts:
+            x, y, err = (np.array(v) for v in zip(*pts))
+            bx.errorbar(x, y, yerr=err, fmt="o-", ms=3, lw=0.8, capsize=2, color=cmap(i / max(1, len(intervals) - 1)),
+                        label="k = %.0e ... %.0e" % (k1, k2))
+    if logs:
+        bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label="paper: 0.18 log10 N - 0.054")
+    bx.set_xlabel("log10 N")
+    bx.set_ylabel("local alpha, mean over e = 0.1 ... 0.4")
+    bx.set_title("(b) local exponent per interval of k", fontsize=9)
+    bx.legend(fontsize=7)
     save(fig, argv[2])
     return 0
 
