@@ -4,12 +4,14 @@
 Usage: /usr/bin/python3 plots/ncoll_panels.py analysis.json PREFIX
 For every (engine, N, T0) of the analysis writes PREFIX_N<N>_T0<T0>_<engine>.png and .pdf with
 (a) n_coll against log10 k for the critical region 1 - 5/N <= e <= 1 - 2.5/N (the paper's
-    0.80 ... 0.90 at N = 25), with the fitted a + b log10 k where logarithmic,
-(b) the same for 1 - 3.25/N <= e <= 1 - 2.5/N (0.87 ... 0.90 at N = 25),
+    0.80 ... 0.90 at N = 25), with the fitted a + b log10 k where logarithmic; for N < 10 (Fig.
+    cflogk) every e,
+(b) the same for 1 - 3.25/N <= e <= 1 - 2.5/N (0.87 ... 0.90 at N = 25); for N < 10 the e around
+    the free-space critical values e_c(3) ... e_c(N + 1) given as ec_lines,
 (c) log10 n_coll against log10 k for e = 0.1, 0.2, ..., 1.0, with the fitted c k^alpha where
     power-law,
 (d) n_coll against e for every k, with e_c1 (and its error), the classification boundary and the
-    e_c2 bracket; an inset enlarges the critical region.
+    e_c2 bracket; for N >= 10 an inset enlarges the critical region.
 A panel whose e range holds no curve shows every curve instead. Colours encode e (colour bars) in
 (a)-(c) and k in (d). Error bars are one standard error. Prints the files written.
 """
@@ -106,8 +108,13 @@ def draw(family, prefix, k_min):
         return None
     N = family["N"]
     fig, axes = plt.subplots(1, 4, figsize=(20, 4.8))
-    wide = in_range(curves, 1 - 5.0 / N, 1 - 2.5 / N)
-    narrow = in_range(curves, 1 - 3.25 / N, 1 - 2.5 / N)
+    if N >= 10:
+        wide = in_range(curves, 1 - 5.0 / N, 1 - 2.5 / N)
+        narrow = in_range(curves, 1 - 3.25 / N, 1 - 2.5 / N)
+    else:  # small N (Figs. cflogk, cfe): every e, then the region of the free-space e_c(n)
+        wide = curves
+        lines = family.get("ec_lines") or []
+        narrow = in_range(curves, min(lines) - 0.02, max(lines) + 0.02) if lines else curves
     tenths = [c for c in curves if abs(10 * c["e"] - round(10 * c["e"])) < 1e-9] or curves
     against_log_k(axes[0], wide, k_min, False, "(a) e = %.3g … %.3g" % (min(c["e"] for c in wide), max(c["e"] for c in wide)), fig)
     against_log_k(axes[1], narrow, k_min, False,
@@ -116,7 +123,7 @@ def draw(family, prefix, k_min):
     crit = [family["e_c1"]["value"]] if family.get("e_c1") else []
     es = sorted(c["e"] for c in curves)
     inset = None
-    if family.get("e_c2") or crit:
+    if N >= 10 and (family.get("e_c2") or crit):  # the paper's Fig. cfe (small N) has no inset
         lo = min([family["e_c2"]["low"]] if family.get("e_c2") else crit) - 0.03
         hi = max(crit + ([family["e_c2"]["high"]] if family.get("e_c2") else [])) + 0.03
         if sum(1 for e in es if lo <= e <= hi) >= 3:

@@ -55,15 +55,26 @@ std::string small_n_table(const StoreAnalysis& a) {
 
 }  // namespace
 
+// Figs. cflogk, cfe: e = 0.05 ... 1.0 by 0.05, refined around each free-space critical value
+// e_c(n), n = 3 ... 7 (= N + 1 for the largest N), by +-0.005 and +-0.01, where the paper finds
+// peaks, dips and shoulders of n_coll(e).
+std::string small_n_e_grid() {
+  std::string e = "0.05:1.0:0.05";
+  for (int n = 3; n <= 7; ++n)
+    for (double d : {-0.01, -0.005, 0.0, 0.005, 0.01}) e += fmt::format(",{:.4f}", theory::ec_free(n) + d);
+  return e;
+}
+
 std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o) {
   if (o.figure == "fig5") return {{"25", kFig5E, preset_k(o), preset_T(o, 25)}};
-  return {{"3,4,5,6", "0.05:1.0:0.05", preset_k(o), preset_T(o, 3)}};
+  return {{"3,4,5,6", small_n_e_grid(), preset_k(o), preset_T(o, 3)}};
 }
 std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o) {
   return {{"25", "0.82:0.92:0.01,1.0", preset_k_max(o), preset_T(o, 25)}};
 }
 
-// Figs. cflogk, cfe (fig3, fig4: one sweep over N = 3..6, e = 0.05..1.0 by 0.05) and cfreqlogN25
+// Figs. cflogk, cfe (fig3, fig4: one sweep over N = 3..6, e = 0.05..1.0 by 0.05 refined around
+// each e_c(n)) and cfreqlogN25
 // (fig5: N = 25 on the paper's e grids), at the preset's k and T.
 FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   const bool fig5 = o.figure == "fig5";
@@ -87,8 +98,9 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure {} --preset {}`. N = {}, k_B T0 = 1, exact engine, e = {}, k = {}, "
       "T = {} (transient T/10), {} runs; fits over k >= {:g}. Figures: `{}_N<N>_T01_exact.png` (and .pdf): "
-      "panel (a) is Fig. cflogk, panel (c) Fig. cfe.\n\n",
-      o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, preset_k_min(o), o.figure);
+      "{}.\n\n",
+      o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, preset_k_min(o), o.figure,
+      fig5 ? "panels (a)–(d) as the paper's Fig. cfreqlogN25" : "panel (a) is Fig. cflogk, panel (d) Fig. cfe, panel (b) the e_c(n) region");
   out.markdown += fig5 ? fig5_table(a) : small_n_table(a);
   out.markdown += "Every (N, e): regime, slope b per decade of k, exponent α, curvature against log10 k, K_i inversion:\n\n```\n" +
                   analysis_text(a) + "```\n";
