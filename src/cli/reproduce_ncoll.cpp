@@ -67,7 +67,8 @@ std::string small_n_e_grid() {
 
 std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o) {
   if (o.figure == "fig5") return {{"25", kFig5E, preset_k(o), preset_T(o, 25)}};
-  return {{"3,4,5,6", small_n_e_grid(), preset_k(o), preset_T(o, 3)}};
+  // The smoke preset checks the pipeline only: the coarse grid.
+  return {{"3,4,5,6", o.smoke() ? "0.05:1.0:0.05" : small_n_e_grid(), preset_k(o), preset_T(o, 3)}};
 }
 std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o) {
   return {{"25", "0.82:0.92:0.01,1.0", preset_k_max(o), preset_T(o, 25)}};
