@@ -29,11 +29,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # seed -> predicted seconds, from the dry runs of the preset's sweeps.
-"$granchain" reproduce --figure all --preset "$preset" --print-sweeps --db "$work/none.db" |
-  grep '^granchain sweep' | while read -r line; do
-    # shellcheck disable=SC2086
-    "$granchain" ${line#granchain } --dry-run --db "$work/none.db"
-  done | awk '!/^#/ { print $4, $2 }' | sort -u > "$work/predicted"
+bash "$(dirname "$0")/preset_points.sh" "$granchain" "$preset" | awk '{ print $4, $2 }' | sort -u > "$work/predicted"
 # seed -> N e k T0 measured seconds, from the store.
 "$granchain" export --db "$store" | awk -F, '
   NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }

@@ -53,11 +53,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # Every distinct point: "N e k T0 T transient seed engine", sorted by N, then e, k, T0.
-"$granchain" reproduce --figure all --preset "$preset" --print-sweeps --db "$work/none.db" |
-  grep '^granchain sweep' | while read -r line; do
-    # shellcheck disable=SC2086
-    "$granchain" ${line#granchain } --dry-run --db "$work/none.db"
-  done | grep -v '^#' | awk '{
+bash "$(dirname "$0")/preset_points.sh" "$granchain" "$preset" | awk '{
     for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
     print v["N"], v["e"], v["k"], v["T0"], v["T"], v["transient"], v["seed"], v["engine"]
   }' | sort -u | sort -k1,1n -k2,2g -k3,3g -k4,4g | awk "$where" > "$work/points"

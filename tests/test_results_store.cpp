@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 #include "store/results_store.hpp"
 #include "temp_dir.hpp"
@@ -49,6 +50,26 @@ TEST(ResultsStore, RoundTripOfRunAndProfiles) {
   EXPECT_EQ(query_double(store.handle(), "SELECT K FROM profiles WHERE i=3"), r.profiles[2].kinetic.value);
   EXPECT_EQ(query_double(store.handle(), "SELECT seed FROM runs"), 1.0);
   ResultsStore::preflight(path);  // an existing store is accepted
+}
+
+// A collapse count is a deterministic function of its definition: storing the same definition
+// again keeps the stored row (same id, no new realisations); another seed is another count.
+TEST(ResultsStore, CollapseCountIsStoredOncePerDefinition) {
+  TempDir dir;
+  ResultsStore store((dir.path / "c.db").string());
+  CollapseResult r;
+  r.spec.params.N = 3;
+  r.spec.params.e = 0.3;
+  r.spec.params.k = 1e6;
+  r.spec.realizations = 2;
+  r.outcomes.resize(2);
+  const auto first = store.insert_collapse(r);
+  EXPECT_EQ(store.insert_collapse(r), first);
+  EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM collapse_runs"), 1.0);
+  EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM collapse_realizations"), 2.0);
+  r.spec.seed = 2;
+  EXPECT_NE(store.insert_collapse(r), first);
+  EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM collapse_runs"), 2.0);
 }
 
 // A failure half-way through writing a run (here: the third profile row is refused) leaves

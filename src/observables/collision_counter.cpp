@@ -26,13 +26,13 @@ void CollisionCounter::on_event(const Event& event) {
   }
 }
 
-Estimate CollisionCounter::collision_rate_per_particle(int N) const {
-  return blocked_estimate(sums_, [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); });
+Estimator CollisionCounter::n_coll(int N) {
+  return [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); };
 }
 
-StationarityCheck CollisionCounter::collision_rate_stationarity(int N) const {
-  return halves_check(sums_, [N](std::span<const double> s) { return (s[kPP] + s[kFloor]) / (N * s[kTime]); });
-}
+Estimate CollisionCounter::collision_rate_per_particle(int N) const { return blocked_estimate(sums_, n_coll(N)); }
+
+StationarityCheck CollisionCounter::collision_rate_stationarity(int N) const { return halves_check(sums_, n_coll(N)); }
 
 Estimate CollisionCounter::floor_hit_rate() const {
   return blocked_estimate(sums_, [](std::span<const double> s) { return s[kFloor] / s[kTime]; });

@@ -29,6 +29,7 @@ class CollisionCounter final : public EventSink {
  private:
   // components per bin: particle-particle collisions, floor hits, bin duration
   enum : int { kPP = 0, kFloor = 1, kTime = 2, kComponents = 3 };
+  static Estimator n_coll(int N);  // (pp + floor) / (N time) of summed bins
   double t_begin_, t_end_, bin_width_;
   BinnedSums sums_;
   std::uint64_t pp_ = 0, floor_ = 0;

@@ -330,7 +330,7 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
 
 namespace {
 
-// The columns that define a collapse count (setup .. tc, in the table's order), from index c on.
+// The values of kCollapseIdentityColumns for a collapse count, in that order, from index c on.
 void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
   q.bind(c++, std::string(setup_name(s.setup)));
   q.bind(c++, s.engine.name);
@@ -349,17 +349,14 @@ void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
 
 }  // namespace
 
-bool ResultsStore::has_collapse(const CollapseSpec& s) {
-  SqlStatement q(db_, R"sql(SELECT 1 FROM collapse_runs WHERE setup = ? AND engine = ? AND N = ? AND e = ? AND k = ? AND
-      a = ? AND v0 = ? AND dv0 = ? AND stop_rule = ? AND realizations = ? AND seed = ? AND dt_factor = ? AND tc = ?
-      LIMIT 1)sql");
-  int c = 1;
-  bind_collapse_definition(q, c, s);
-  return q.row();
-}
-
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   return in_transaction([&] {
+    std::string where;
+    for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
+    SqlStatement find(db_, ("SELECT id FROM collapse_runs WHERE " + where + " LIMIT 1").c_str());
+    int f = 1;
+    bind_collapse_definition(find, f, r.spec);
+    if (find.row()) return find.column_int(0);  // the same count is already stored
     SqlStatement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
         dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
         wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");

@@ -22,6 +22,11 @@ class StoreError : public std::runtime_error {
 
 inline constexpr int kStoreSchemaVersion = 1;
 
+// The columns of collapse_runs that define a collapse count, in the table's order; two rows with
+// equal values here hold the same count (ResultsStore::insert_collapse, merge).
+inline constexpr const char* kCollapseIdentityColumns[] = {"setup", "engine", "N", "e", "k", "a", "v0", "dv0",
+                                                           "stop_rule", "realizations", "seed", "dt_factor", "tc"};
+
 // Why a new file could not be created at `path` ("" if it can): its folder must exist and be
 // writable, and the path must not be a folder.
 std::string cannot_create_file_reason(const std::string& path);
@@ -55,13 +60,11 @@ class ResultsStore {
   };
   // Every stored point by key, with its run id and n_coll.
   std::map<std::string, PointSummary> point_summaries();
-  // Appends one collapse count (granchain collapse) with its per-realisation counts, in one
-  // transaction, and returns its id.
+  // Stores one collapse count (granchain collapse) with its per-realisation counts, in one
+  // transaction, and returns its id. A count is a deterministic function of its definition
+  // (kCollapseIdentityColumns), so one already stored with the same definition is kept and its id
+  // returned: a repeated command adds nothing.
   std::int64_t insert_collapse(const CollapseResult& r);
-  // Does the store hold a collapse count of exactly this definition (setup, engine, N, e, k,
-  // launch, stop rule, realisations, seed, dt-factor, TC time)? The count is a deterministic
-  // function of it, so a second copy would add nothing.
-  bool has_collapse(const CollapseSpec& s);
   std::int64_t count_runs();
   sqlite3* handle() { return db_; }
 

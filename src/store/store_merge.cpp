@@ -17,8 +17,6 @@ namespace {
 const char* kRunResultColumns[] = {"n_coll", "n_coll_err", "n_coll_blocks", "floor_rate", "floor_rate_err", "pp_rate",
                                    "pp_rate_err", "particle_collisions", "floor_hits", "samples", "events"};
 // What identifies a collapse count, and what it found.
-const char* kCollapseIdentity[] = {"setup", "engine", "N", "e", "k", "a", "v0", "dv0", "stop_rule", "realizations",
-                                   "seed", "dt_factor", "tc"};
 const char* kCollapseResultColumns[] = {"n_tot", "n_tot_err", "n_tot_min", "n_tot_max", "collapsed"};
 
 struct Connection {
@@ -185,14 +183,14 @@ void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_
                     MergeReport& report) {
   SqlStatement rows(source, "SELECT * FROM collapse_runs ORDER BY id");
   std::string where;
-  for (const char* c : kCollapseIdentity) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
+  for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
   SqlStatement find(target, ("SELECT id FROM collapse_runs WHERE " + where).c_str());
   ResultComparer compare(target, "collapse_runs", kCollapseResultColumns);
   std::unique_ptr<SqlStatement> insert;
   while (rows.row()) {
     const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
     int b = 1;
-    for (const char* c : kCollapseIdentity) find.bind_value(b++, rows.column_value(column_index(rows, c)));
+    for (const char* c : kCollapseIdentityColumns) find.bind_value(b++, rows.column_value(column_index(rows, c)));
     const bool found = find.row();
     const std::int64_t existing = found ? find.column_int(0) : 0;
     find.reset();
