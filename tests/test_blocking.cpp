@@ -61,6 +61,37 @@ TEST(Blocking, CorrelatedDataRecoverTrueError) {
   EXPECT_GE(within, 6);
 }
 
+// Anticorrelated bins, as the collision counts of a short bin of a quasi-periodic column (a burst
+// in one bin, a lull in the next): bin values x_t = eps_t - theta eps_{t-1} (MA(1), theta = 0.5,
+// lag-1 autocorrelation -0.4). The naive error of the mean of n bins is sqrt(1 + theta^2) / (1 - theta)
+// = 2.2 times the exact sqrt(n (1 + theta^2) - 2 (n - 1) theta) / n; blocking must not stop at a
+// level whose blocks are anticorrelated. Blocks of b bins still carry an edge excess of about
+// sqrt(1 + 2 theta / (b (1 - theta)^2)) (1.22 at b = 8, 1.12 at b = 16), so the error may come out
+// up to about 1.3 times the exact one, never twice.
+TEST(Blocking, AnticorrelatedBinsAreNotTakenAsIndependent) {
+  const double theta = 0.5;
+  const int n = 1024;
+  const double exact = std::sqrt(n * (1 + theta * theta) - 2.0 * (n - 1) * theta) / n;
+  double sum_ratio = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    Rng r(seed);
+    BinnedSums s(n, 2);
+    double prev = r.normal();
+    for (int t = 0; t < n; ++t) {
+      const double eps = r.normal();
+      s.bin(t)[0] = 1.0;
+      s.bin(t)[1] = eps - theta * prev;
+      prev = eps;
+    }
+    const Estimate e = blocked_estimate(s, mean_of);
+    EXPECT_GT(e.error, 0.7 * exact) << "seed " << seed;
+    EXPECT_LT(e.error, 1.6 * exact) << "seed " << seed;
+    sum_ratio += e.error / exact;
+  }
+  EXPECT_LT(sum_ratio / 8, 1.4);
+  EXPECT_GT(sum_ratio / 8, 0.9);
+}
+
 // If the correlation time is as long as the run, no plateau can be seen and the flag says so.
 TEST(Blocking, FlagsMissingPlateau) {
   const BinnedSums s = ar1_bins(0.99995, 1 << 18, 1024, 3);
@@ -143,4 +174,32 @@ TEST(Blocking, HalvesCheckWithoutSpreadComparesTheValues) {
   }
   EXPECT_TRUE(halves_check(flat, mean_of).stationary);
   EXPECT_FALSE(halves_check(step, mean_of).stationary);
+}
+
+// Replicas drawn with their stated errors give chi2/dof near 1 (z within 4 of N(0, 1) over 300
+// groups of 4); errors stated at half their size give chi2/dof near 4; groups of one run or with a
+// zero error are skipped.
+TEST(ReplicaScatter, ChiSquaredPerDegreeOfFreedomIsOneWhenErrorsAreRightAndFourWhenHalved) {
+  Rng rng(41);
+  std::vector<std::vector<std::pair<double, double>>> right, halved;
+  for (int g = 0; g < 300; ++g) {
+    std::vector<std::pair<double, double>> a, b;
+    for (int i = 0; i < 4; ++i) {
+      const double err = 0.1 * (1 + i);  // unequal errors: the weighted mean matters
+      const double x = 5.0 + g + err * rng.normal();
+      a.push_back({x, err});
+      b.push_back({x, 0.5 * err});
+    }
+    right.push_back(a);
+    halved.push_back(b);
+  }
+  right.push_back({{1.0, 0.1}});              // one run: skipped
+  right.push_back({{1.0, 0.1}, {2.0, 0.0}});  // no error: skipped
+  const ReplicaScatter r = replica_scatter(right);
+  EXPECT_EQ(r.groups, 300);
+  EXPECT_EQ(r.dof, 900);
+  EXPECT_LT(std::abs(r.chi2_z), 4.0) << r.chi2 / r.dof;
+  const ReplicaScatter h = replica_scatter(halved);
+  EXPECT_NEAR(h.chi2 / h.dof, 4.0, 4.0 * 4.0 * std::sqrt(2.0 / 900));
+  EXPECT_GT(h.chi2_z, 10.0);
 }

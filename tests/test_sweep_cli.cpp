@@ -254,22 +254,22 @@ TEST_F(SweepCli, PrintedSweepsFillTheStoreTheFigureReuses) {
   const CliResult p = run("reproduce --figure fig4 --print-sweeps");
   ASSERT_EQ(p.exit_code, 0) << p.err;
   // Each command follows a comment line with its predicted cost. The e grid: 0.05 .. 1.0 by 0.05
-  // and five values around each e_c(n), n = 3 .. 7: 45 e, 4 N, 5 k.
+  // and five values around each e_c(n), n = 3 .. 7: 45 e, 4 N, 5 k, two seeds.
   const std::size_t at = p.out.find("granchain sweep");
   ASSERT_NE(at, std::string::npos) << p.out;
-  EXPECT_EQ(p.out.rfind("# 900 points, predicted ", at), 0u) << p.out;
+  EXPECT_EQ(p.out.rfind("# 1800 points, predicted ", at), 0u) << p.out;
   const std::string line = p.out.substr(at, p.out.find('\n', at) - at);
   EXPECT_EQ(line.rfind("granchain sweep --N 3,4,5,6 --e 0.05:1.0:0.05,0.0618,", 0), 0u) << line;
   EXPECT_NE(line.find(",0.0718,"), std::string::npos) << line;  // e_c(3)
-  EXPECT_NE(line.find(" --k 1e4:1e8:x10 --T 1000 --T0 1"), std::string::npos) << line;
-  EXPECT_NE(p.out.find("# 900 distinct points"), std::string::npos) << p.out;
-  // Run as printed (900 runs, about 20 s), then the figure finds every point stored.
+  EXPECT_NE(line.find(" --k 1e4:1e8:x10 --T 1000 --T0 1 --replicas 2"), std::string::npos) << line;
+  EXPECT_NE(p.out.find("# 1800 distinct points"), std::string::npos) << p.out;
+  // Run as printed (1800 runs, about 40 s), then the figure finds every point stored.
   const CliResult sw = run(line.substr(std::string("granchain ").size()) + " --db s.db -q");
   ASSERT_EQ(sw.exit_code, 0) << sw.err;
   const CliResult fig = run("reproduce --figure fig4 --db s.db --out figs");
   ASSERT_EQ(fig.exit_code, 0) << fig.err;
-  EXPECT_NE(fig.err.find("900 runs, 900 already in s.db, 0 to run"), std::string::npos) << fig.err;
-  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), 900);
+  EXPECT_NE(fig.err.find("1800 runs, 1800 already in s.db, 0 to run"), std::string::npos) << fig.err;
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), 1800);
   EXPECT_TRUE(fs::exists(dir_ / "figs/fig4_N6_T01_exact.png"));
   EXPECT_TRUE(fs::exists(dir_ / "figs/report-fig4.md"));
 }

@@ -77,8 +77,10 @@ Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_bl
   const std::size_t last = curve.size() - 1;
   std::size_t chosen = last;
   for (std::size_t l = 0; l < last; ++l) {
-    // Blocks must look independent: lag-1 autocorrelation within 2 standard errors of zero.
-    bool plateau = curve[l].lag1 < 2.0 / std::sqrt(double(curve[l].blocks));
+    // Blocks must look independent: lag-1 autocorrelation within 2 standard errors of zero, of
+    // either sign (bins of a quasi-periodic series are anticorrelated, and stopping there would
+    // overstate the error).
+    bool plateau = std::abs(curve[l].lag1) < 2.0 / std::sqrt(double(curve[l].blocks));
     for (std::size_t h = l + 1; plateau && h <= last; ++h) {
       const double sigma_h = curve[h].error / std::sqrt(2.0 * (curve[h].blocks - 1));
       if (curve[h].error > curve[l].error + 2.0 * sigma_h) {
@@ -117,6 +119,39 @@ StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, doubl
     out.z = diff == 0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), diff);
     out.stationary = diff == 0;
   }
+  return out;
+}
+
+double chi2_normal_deviate(double chi2, int dof) {
+  if (dof <= 0) return 0.0;
+  const double v = 2.0 / (9.0 * dof);
+  return (std::cbrt(chi2 / dof) - (1.0 - v)) / std::sqrt(v);
+}
+
+ReplicaScatter replica_scatter(const std::vector<std::vector<std::pair<double, double>>>& groups) {
+  ReplicaScatter out;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const auto& runs = groups[g];
+    if (runs.size() < 2 || std::any_of(runs.begin(), runs.end(), [](const auto& r) { return !(r.second > 0); })) continue;
+    double w = 0, wx = 0;
+    for (const auto& [x, err] : runs) {
+      w += 1 / (err * err);
+      wx += x / (err * err);
+    }
+    const double mean = wx / w;
+    double chi2 = 0;
+    for (const auto& [x, err] : runs) chi2 += (x - mean) * (x - mean) / (err * err);
+    const int dof = static_cast<int>(runs.size()) - 1;
+    ++out.groups;
+    out.runs += static_cast<int>(runs.size());
+    out.dof += dof;
+    out.chi2 += chi2;
+    if (out.worst < 0 || chi2 / dof > out.worst_ratio) {
+      out.worst = static_cast<int>(g);
+      out.worst_ratio = chi2 / dof;
+    }
+  }
+  out.chi2_z = chi2_normal_deviate(out.chi2, out.dof);
   return out;
 }
 

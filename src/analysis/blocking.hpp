@@ -73,4 +73,22 @@ StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, doubl
 // Largest power of two <= min(limit, n), at least 1.
 int power_of_two_bins(long long n, int limit);
 
+// The normal deviate of a chi^2 with `dof` degrees of freedom (Wilson-Hilferty: (chi2/dof)^(1/3)
+// is nearly normal), about N(0, 1) when the chi^2 is what its errors predict; 0 without dof.
+double chi2_normal_deviate(double chi2, int dof);
+
+// A check of error bars against independent replicas: each group holds (value, error) of m >= 2
+// independent runs of one point; chi^2 = sum_i (x_i - xbar)^2 / err_i^2 with xbar the weighted
+// mean has m - 1 degrees of freedom when the errors are right. Summed over the groups, chi2/dof
+// is about 1 (chi2_z about N(0, 1)); above 1 the errors are too small by about sqrt(chi2/dof).
+// Groups with fewer than two runs or a non-positive error are skipped. `worst` is the index of
+// the group with the largest chi2 / (m - 1).
+struct ReplicaScatter {
+  int groups = 0, runs = 0, dof = 0;
+  double chi2 = 0, chi2_z = 0;
+  int worst = -1;
+  double worst_ratio = 0;
+};
+ReplicaScatter replica_scatter(const std::vector<std::vector<std::pair<double, double>>>& groups);
+
 }  // namespace granchain

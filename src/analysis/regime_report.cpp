@@ -21,8 +21,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   using Key = std::tuple<std::string, int, double>;
   std::map<Key, std::map<double, std::map<double, std::pair<double, double>>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
+  std::map<Key, std::map<std::pair<double, double>, std::vector<std::pair<double, double>>>> members;  // (e, k) -> runs
   for (const NcollRun& r : runs) {
     if (!std::isfinite(r.k) || !(r.n_coll_err > 0) || !std::isfinite(r.n_coll)) continue;
+    members[{r.engine, r.N, r.kT0}][{r.e, r.k}].push_back({r.n_coll, r.n_coll_err});
     auto& acc = groups[{r.engine, r.N, r.kT0}][r.e][r.k];
     const double w = 1.0 / (r.n_coll_err * r.n_coll_err);
     acc.first += w;
@@ -64,6 +66,16 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       fam.e_c1_estimate = estimate_e_c1(all_curves, fam.N, k_min);
       fam.e_c1 = fam.e_c1_estimate.e_c1;
       fam.e_c2 = e_c2_from_regimes(es, regimes);
+    }
+    {
+      std::vector<std::vector<std::pair<double, double>>> groups;
+      std::vector<std::pair<double, double>> where;
+      for (const auto& [ek, g] : members[key]) {
+        groups.push_back(g);
+        where.push_back(ek);
+      }
+      fam.replicas = replica_scatter(groups);
+      if (fam.replicas.worst >= 0) std::tie(fam.replicas_worst_e, fam.replicas_worst_k) = where[fam.replicas.worst];
     }
     if (!fam.alphas.empty()) {
       fam.alpha_bar = mean_exponent(fam.alphas);

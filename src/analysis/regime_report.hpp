@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/blocking.hpp"
 #include "analysis/collapse_regimes.hpp"
 #include "analysis/critical_restitution.hpp"
 
@@ -42,6 +43,10 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
   // The local exponent per interval of k, averaged over the same e as alpha_bar (all k, not only
   // the asymptotic range): how the slope behind alpha_bar drifts with k.
   std::vector<LocalExponent> local_alpha_bar;
+  // The blocking errors checked against independent replicas of one (e, k), where the store holds
+  // two or more (analysis/blocking.hpp); the worst point's e and k.
+  ReplicaScatter replicas;
+  double replicas_worst_e = 0, replicas_worst_k = 0;
 };
 
 struct AcrossN {  // one (engine, kT0), over N

@@ -120,7 +120,8 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
     if (!f->grid) continue;
     o.figure = f->name;
     for (const GridBlock& b : f->grid(o)) {
-      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}", b.N, b.e, b.k, b.T, b.T0);
+      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}{}", b.N, b.e, b.k, b.T, b.T0,
+                                           b.replicas > 1 ? fmt::format(" --replicas {}", b.replicas) : "");
       if (!seen.insert(line).second) continue;
       blocks.push_back(b);
       double seconds = 0.0;

@@ -35,6 +35,7 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
     def.raw["k"] = {b.k, ""};
     def.raw["T"] = {b.T, ""};
     def.raw["T0"] = {b.T0, ""};
+    def.replicas = b.replicas;
     for (SweepPoint& p : build_sweep_points(def))
       if (seen.insert(p.key).second) all.push_back(std::move(p));
   }

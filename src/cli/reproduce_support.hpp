@@ -31,6 +31,7 @@ struct FigureOutcome {
 // One block of a figure's driven-column grid, as texts of `granchain sweep` (lists, ranges).
 struct GridBlock {
   std::string N, e, k, T, T0 = "1";
+  int replicas = 1;  // independent runs (seeds) per point
 };
 
 // The presets' k grids and times. quick: k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and
@@ -71,6 +72,10 @@ std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o);                 // f
 std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o);  // fig8
 std::vector<GridBlock> across_n_grid(const ReproduceFlags& o);              // fig6, fig7, fig9
 std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // table1
+
+// The statements of Sec. III.B on the fine structure of n_coll(e) (N = 3..6) tested on these
+// points' curves at their largest k, per seed and combined: a Markdown section ("" without data).
+std::string fine_structure_report(const std::string& db, const std::vector<SweepPoint>& points);
 
 // The figures. Each runs what it needs, draws into --out and returns its report section; throws
 // StoreError (store), UnphysicalStateError (a trajectory that must not fail) or std::runtime_error

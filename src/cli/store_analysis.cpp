@@ -68,6 +68,14 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
 
 }  // namespace
 
+// The check of the blocking errors by independent replicas (null where no point has two runs).
+nlohmann::json replica_check_json(const analysis::FamilyAnalysis& f) {
+  const ReplicaScatter& r = f.replicas;
+  if (r.groups == 0) return nullptr;
+  return {{"points", r.groups}, {"runs", r.runs}, {"chi2", r.chi2}, {"dof", r.dof}, {"chi2_z", r.chi2_z},
+          {"worst_chi2_per_dof", r.worst_ratio}, {"worst_e", f.replicas_worst_e}, {"worst_k", f.replicas_worst_k}};
+}
+
 nlohmann::json critical_json(const analysis::CriticalValue& c) {
   if (!c.found) return nullptr;
   return {{"value", c.value}, {"error", c.error}, {"low", c.low}, {"high", c.high}, {"method", c.method}};
@@ -89,14 +97,16 @@ nlohmann::json e_c1_json(const analysis::E_c1Estimate& x) {
   return j;
 }
 
+std::string power_of_ten_text(double k) {
+  const double p = std::round(std::log10(k));
+  return std::abs(k - std::pow(10.0, p)) <= 1e-9 * k ? fmt::format("1e{:g}", p) : fmt::format("{:g}", k);
+}
+
 std::string local_exponents_text(const std::vector<analysis::LocalExponent>& l) {
-  auto k_text = [](double k) {  // 1e5 rather than 1e+05 for powers of ten
-    const double p = std::round(std::log10(k));
-    return std::abs(k - std::pow(10.0, p)) <= 1e-9 * k ? fmt::format("1e{:g}", p) : fmt::format("{:g}", k);
-  };
   std::string out;
   for (const auto& x : l)
-    out += fmt::format("{}{}–{}: {}", out.empty() ? "" : ", ", k_text(x.k1), k_text(x.k2), plus_minus(x.alpha, x.error));
+    out += fmt::format("{}{}–{}: {}", out.empty() ? "" : ", ", power_of_ten_text(x.k1), power_of_ten_text(x.k2),
+                       plus_minus(x.alpha, x.error));
   return out.empty() ? "-" : out;
 }
 
@@ -172,6 +182,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                              {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
                              {"local_alpha_bar", local_exponents_json(f.local_alpha_bar)},
                              {"e_c2", critical_json(f.e_c2)},
+                             {"replica_check", replica_check_json(f)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
   }
@@ -250,6 +261,12 @@ std::string analysis_text(const StoreAnalysis& a) {
                          x.last_collapsing_e, x.first_uncollapsing_e,
                          isolated.empty() ? "" : "; isolated collapsing e above it (taken as b = 0): " + isolated);
     }
+    const ReplicaScatter& r = f.replicas;
+    if (r.groups > 0)
+      out += fmt::format("    blocking errors against independent replicas: {} points with {} runs, chi2/dof = {:.1f}/{} = {:.2f} "
+                         "(z = {:.1f}; about 1 when the errors are right); largest chi2/dof {:.2f} at e = {:g}, k = {:g}\n",
+                         r.groups, r.runs, r.chi2, r.dof, r.chi2 / r.dof, r.chi2_z, r.worst_ratio, f.replicas_worst_e,
+                         f.replicas_worst_k);
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;

@@ -38,6 +38,8 @@ nlohmann::json critical_json(const analysis::CriticalValue& c);
 
 // "v ± e" with `digits` decimals, or "-" when v is not finite.
 std::string plus_minus(double v, double e, int digits = 3);
+// A value of k as text: 1e5 rather than 1e+05 for a power of ten, %g otherwise.
+std::string power_of_ten_text(double k);
 // "1e5–1e6: 0.27 ± 0.01, 1e6–1e7: ..." (local exponents per interval of k), "-" when empty.
 std::string local_exponents_text(const std::vector<analysis::LocalExponent>& l);
 nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& l);
