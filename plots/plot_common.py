@@ -1,6 +1,7 @@
 """Shared by the plot scripts: matplotlib without a display, reading the JSON granchain writes,
-and saving a figure as PREFIX.png and PREFIX.pdf."""
+and saving a figure as PREFIX.png and PREFIX.pdf, each written whole or not at all."""
 import json
+import os
 import sys
 
 import matplotlib
@@ -22,7 +23,19 @@ def usage(doc, argv, count):
     return False
 
 
+def save_file(fig, path, **kwargs):
+    """Writes the figure to path whole or not at all: a temporary file beside it, then a rename."""
+    fmt = path.rsplit(".", 1)[-1]
+    tmp = "%s.tmp%d.%s" % (path, os.getpid(), fmt)
+    try:
+        fig.savefig(tmp, format=fmt, **kwargs)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def save(fig, prefix):
     fig.tight_layout()
-    fig.savefig(prefix + ".png", dpi=150)
-    fig.savefig(prefix + ".pdf")
+    save_file(fig, prefix + ".png", dpi=150)
+    save_file(fig, prefix + ".pdf")

@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 
-from plot_common import plt
+from plot_common import plt, save_file
 
 
 def main(argv):
@@ -27,9 +27,9 @@ def main(argv):
     if len(argv) > 3:
         ax.set_title(argv[3], fontsize=9)
     fig.tight_layout()
-    fig.savefig(argv[2], dpi=150)
+    save_file(fig, argv[2], dpi=150)
     stem = argv[2].rsplit(".", 1)[0]
-    fig.savefig(stem + ".pdf")
+    save_file(fig, stem + ".pdf")
     return 0
 
 

@@ -63,6 +63,7 @@ struct Case {
   ChainState s;
   double t_end;
   std::vector<double> floor_speeds;  // empty: free space
+  double fine_tolerance = 1e-6;       // of the reference at dt = tau_c / 1e4 against the exact engine
 };
 
 Outcome run_exact(const Case& c) {
@@ -93,6 +94,13 @@ std::vector<Case> deterministic_cases() {
     Rng r(11);
     for (int i = 0; i < 200; ++i) speeds.push_back(1.0 + r.uniform01());
     cases.push_back({"driven column, scripted floor", p, driven_column_initial_state(p, 3), 4.0, speeds});
+    // Nearly perfectly inelastic, e = 1e-6: the binary contact's damping ratio
+    // is 0.975, and the cluster modes with Laplacian eigenvalue lambda > 2.1 are overdamped
+    // (damping ratio 0.975 sqrt(lambda / 2)); every kind of mode occurs.
+    ChainParameters q{.N = 5, .g = 1.0, .k = 1e3, .e = 1e-6};
+    // Strong damping makes the reference's error constant larger (2.9e-6 at dt = tau_c / 1e4);
+    // it still converges onto the exact engine at second order.
+    cases.push_back({"driven column, e = 1e-6", q, driven_column_initial_state(q, 3), 4.0, speeds, 1e-5});
   }
   return cases;
 }
@@ -130,7 +138,8 @@ TEST(ExactEngine, BinaryContactLastsTauCAndRestitutesE) {
 }
 
 // The reference engine with its switches located converges at second order onto the exact
-// engine (error x100 smaller for a step 10x smaller) and meets it to 1e-6 of the velocities, with
+// engine (error x100 smaller for a step 10x smaller) and meets it to 1e-6 of the velocities (1e-5 at
+// e = 1e-6), with
 // the same number of collisions and floor hits. The paper's unlocated scheme converges too, at
 // first order (docs/benchmarks.md lists its error).
 TEST(ExactEngine, DeterministicCasesAgreeWithConvergedReference) {
@@ -140,7 +149,7 @@ TEST(ExactEngine, DeterministicCasesAgreeWithConvergedReference) {
     const Outcome fine = run_reference(c, 1e4, true);
     const double err_coarse = velocity_error(coarse.v, exact.v);
     const double err_fine = velocity_error(fine.v, exact.v);
-    EXPECT_LT(err_fine, 1e-6) << c.name;
+    EXPECT_LT(err_fine, c.fine_tolerance) << c.name;
     EXPECT_GT(err_coarse / err_fine, 30.0) << c.name << ": not second-order convergence";
     EXPECT_EQ(fine.ends, exact.ends) << c.name;
     EXPECT_EQ(fine.begins, exact.begins) << c.name;

@@ -167,6 +167,28 @@ TEST(HardSphereEngine, TcModelContinuesPastTheCollapse) {
   EXPECT_NEAR(p1, p0, 1e-12);
 }
 
+// A collapse report says what would continue past it: without the TC model, the TC model with
+// tc at least the span the engine watches; with a TC time shorter than that span (here below the
+// resolution of t, so that no collision inside the span is made elastic), that tc is too short.
+TEST(HardSphereEngine, CollapseReportNamesTheTcTimeThatWouldContinue) {
+  const ChainParameters p = free_space(3, 0.05);
+  const auto report = [&](double tc) -> std::string {
+    HardSphereEngine engine(p, free_space_launch_state(p, {}, 3), nullptr, {.tc = tc, .collapse_collisions = 10});
+    NullEventSink sink;
+    try {
+      engine.advance_to(1e6, sink);
+    } catch (const InelasticCollapseError& err) {
+      return err.what();
+    }
+    return "no collapse";
+  };
+  const std::string off = report(0.0);
+  EXPECT_NE(off.find("Use the TC model (tc >= 1e-09)"), std::string::npos) << off;
+  const std::string too_short = report(1e-300);
+  EXPECT_NE(too_short.find("the TC model did not prevent it: tc = 1e-300 is shorter than the span"), std::string::npos) << too_short;
+  EXPECT_NE(too_short.find("use tc >= 1e-09"), std::string::npos) << too_short;
+}
+
 // Two spheres thrown against a wall collapse for e < 3 - 2 sqrt 2 and never above (the ICW value,
 // exact for N = 2, paper Eq. icw; the inelastic wall makes them half of a symmetric four-sphere
 // chain, e_c^wall(2) = e_c(4)). Just above e_c the sequence lingers near the vanishing fixed point

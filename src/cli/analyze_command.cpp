@@ -52,15 +52,17 @@ namespace {
 
 int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   auto& o = *impl_;
-  const bool json_requested = o.json_option->count() > 0, json_stdout = json_requested && o.json_path.empty();
+  const bool json_requested = o.json_option->count() > 0;
+  const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
   ExportSelection sel;
   try {
     if (!o.N.empty()) sel.values["N"] = parse_value_list(o.N, "--N");
     if (!o.T0.empty()) sel.values["T0"] = parse_value_list(o.T0, "--T0");
     if (!o.engine.empty()) sel.engines = {o.engine};
     if (!(o.k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", o.k_min));
-    if (json_requested && !json_stdout) check_output_file(o.json_path);
-    if (!o.plot_prefix.empty()) check_output_file(o.plot_prefix + ".json", "--plot");
+    if (json_requested && !json_stdout) check_output_file(o.json_path, "--json", {{"--db", o.db}});
+    if (!o.plot_prefix.empty())
+      check_output_file(o.plot_prefix + ".json", "--plot", {{"--db", o.db}, {"--json", json_stdout ? "" : o.json_path}});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -81,11 +83,16 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   }
   if (json_requested) {
     const std::string text = a.json.dump(1) + "\n";
-    if (json_stdout) {
-      fmt::print("{}", text);
-      return kExitOk;
+    try {
+      if (json_stdout) {
+        write_standard_output(text);
+        return kExitOk;
+      }
+      write_file_atomically(o.json_path, text);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "granchain: error: {}\n", e.what());
+      return kExitStoreFailed;
     }
-    write_file_atomically(o.json_path, text);
   }
   if (!o.quiet) fmt::print("{}", analysis_text(a));
   return kExitOk;

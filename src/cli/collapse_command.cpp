@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli/input_error.hpp"
+#include "cli/interrupt_message.hpp"
 #include "cli/output_file.hpp"
 #include "cli/value_list.hpp"
 #include "engines/engine.hpp"
@@ -120,7 +121,7 @@ namespace {
 int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   auto& o = *impl_;
   const bool json_requested = o.json_option->count() > 0;
-  const bool json_stdout = json_requested && o.json_path.empty();
+  const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
   const bool hard = is_hard_sphere_engine(o.engine);
   std::vector<double> es, ks;
   CollapseSpec base;
@@ -163,8 +164,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
       throw InputError(fmt::format("--collapse-collisions = {} is out of range; valid range: 2 <= n <= 1e9", o.collapse_collisions));
     if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
       throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
-    if (!o.events_path.empty()) check_output_file(o.events_path, "--events");
-    if (json_requested && !json_stdout) check_output_file(o.json_path);
+    const NamedPath db{"--db", o.no_db ? "" : o.db_path};
+    if (!o.events_path.empty()) check_output_file(o.events_path, "--events", {db});
+    if (json_requested && !json_stdout) check_output_file(o.json_path, "--json", {db, {"--events", o.events_path}});
     if (!o.no_db) ResultsStore::preflight(o.db_path);
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
@@ -184,13 +186,18 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   base.seed = static_cast<std::uint64_t>(o.seed);
   base.threads = o.threads;
 
-  // The event file is written to a temporary name and renamed only when everything succeeded.
-  const std::string events_tmp = o.events_path.empty() ? "" : fmt::format("{}.tmp-{}", o.events_path, getpid());
+  // The event file is written to a temporary name and renamed only when everything succeeded; a
+  // target that is not a regular file (a device, a FIFO) is written directly.
+  std::error_code fs_error;
+  const bool events_direct = !o.events_path.empty() && std::filesystem::exists(o.events_path, fs_error) &&
+                             !std::filesystem::is_regular_file(o.events_path, fs_error);
+  const std::string events_tmp = o.events_path.empty() || events_direct ? "" : fmt::format("{}.tmp-{}", o.events_path, getpid());
   std::ofstream events;
-  if (!events_tmp.empty()) {
-    events.open(events_tmp);
+  if (!o.events_path.empty()) {
+    events.open(events_direct ? o.events_path : events_tmp);
     events << "e,k,realization,collision,t_begin,t_end,i,j,speed_in,speed_out\n";
   }
+  announce_on_interrupt("the counts did not finish; nothing was stored or written", events_tmp);
   auto remove_tmp = [&] {
     if (!events_tmp.empty()) std::filesystem::remove(events_tmp);
   };
@@ -308,12 +315,12 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     if (events.is_open()) {
       events.close();
       if (!events) throw std::runtime_error(fmt::format("--events: cannot write '{}'", o.events_path));
-      std::filesystem::rename(events_tmp, o.events_path);
+      if (!events_direct) std::filesystem::rename(events_tmp, o.events_path);
       stored += (stored.empty() ? "" : ", ") + fmt::format("collisions in {}", o.events_path);
     }
     if (json_requested) {
       if (json_stdout) {
-        fmt::print("{}\n", j.dump(2));
+        write_standard_output(j.dump(2) + "\n");
       } else {
         write_file_atomically(o.json_path, j.dump(2) + "\n");
         stored += (stored.empty() ? "" : ", ") + fmt::format("JSON in {}", o.json_path);
@@ -321,7 +328,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     }
   } catch (const std::exception& e) {
     remove_tmp();
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    fmt::print(stderr, "granchain: error: {}{}\n", e.what(), stored.empty() ? "" : "; already written: " + stored);
     return kExitStoreFailed;
   }
   if (!o.quiet && !json_stdout && !stored.empty()) fmt::print("\nwritten: {}\n", stored);

@@ -74,7 +74,8 @@ int execute_export(const std::shared_ptr<ExportFlags>& impl_) {
     }
     sel.engines = parse_name_list(o.engine);
     sel.where = o.where;
-    if (!o.output.empty()) check_output_file(o.output, "--output");
+    if (is_standard_output(o.output)) o.output.clear();
+    if (!o.output.empty()) check_output_file(o.output, "--output", {{"--db", o.db}});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -87,7 +88,12 @@ int execute_export(const std::shared_ptr<ExportFlags>& impl_) {
     return kExitBadInput;
   }
   if (o.output.empty()) {
-    fmt::print("{}", text);
+    try {
+      write_standard_output(text);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "granchain: error: {}\n", e.what());
+      return kExitStoreFailed;
+    }
     return kExitOk;
   }
   try {

@@ -3,11 +3,24 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <vector>
 
 #include "cli/subcommand.hpp"
 #include "version.hpp"
+
+namespace {
+
+int standard_output_failed() {
+  fmt::print(stderr, "granchain: error: cannot write standard output: {}; what it should have shown is incomplete\n",
+             std::strerror(errno ? errno : EIO));
+  return granchain::kExitStoreFailed;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"granchain: inelastic collapse of soft and hard spheres on a vertical line (Wakou et al.)"};
@@ -37,11 +50,17 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, c ? c->app->get_name() + " " : "");
     return granchain::kExitBadInput;
   }
+  int rc = 0;
   try {
-    if (const auto* c = selected()) return c->execute();
+    if (const auto* c = selected()) rc = c->execute();
   } catch (const std::exception& e) {
+    if (std::ferror(stdout)) return standard_output_failed();
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return 1;
   }
-  return 0;
+  // Whatever was printed must have reached standard output (a full disk, a closed pipe). A command
+  // that failed has said so already.
+  errno = 0;
+  if ((std::fflush(stdout) != 0 || std::ferror(stdout)) && rc == granchain::kExitOk) return standard_output_failed();
+  return rc;
 }

@@ -1,8 +1,14 @@
 #include "cli/plot_script.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
-#include <cstdlib>
+#include <cerrno>
+#include <cstring>
 
 #ifndef GRANCHAIN_PLOTS_DIR
 #define GRANCHAIN_PLOTS_DIR "plots"
@@ -11,21 +17,71 @@
 namespace granchain {
 
 namespace {
-std::string shell_quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+
+// The last non-empty line of a script's error output (Python's traceback ends with the error).
+std::string last_line(const std::string& text) {
+  std::size_t end = text.find_last_not_of(" \n\r\t");
+  if (end == std::string::npos) return "";
+  const std::size_t begin = text.rfind('\n', end);
+  return text.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1) + 1);
 }
+
 }  // namespace
 
 std::string run_plot_script(const std::string& script, const std::vector<std::string>& args) {
-  std::string cmd = "/usr/bin/python3 " + shell_quoted(std::string(GRANCHAIN_PLOTS_DIR) + "/" + script);
-  for (const auto& a : args) cmd += " " + shell_quoted(a);
-  cmd += " > /dev/null";
-  if (std::system(cmd.c_str()) != 0)
-    return fmt::format("drawing with plots/{} failed (it needs /usr/bin/python3 with matplotlib, which "
-                       "scripts/install-deps.sh installs)", script);
-  return "";
+  const std::string path = std::string(GRANCHAIN_PLOTS_DIR) + "/" + script;
+  std::vector<std::string> argv_s = {"/usr/bin/python3", path};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  int err_pipe[2];
+  if (::pipe2(err_pipe, O_CLOEXEC) != 0) return fmt::format("drawing with plots/{}: cannot create a pipe: {}", script, std::strerror(errno));
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(err_pipe[0]);
+    ::close(err_pipe[1]);
+    return fmt::format("drawing with plots/{}: cannot start it: {}", script, std::strerror(errno));
+  }
+  if (pid == 0) {  // the child: dies with its parent; standard output discarded, errors to the pipe
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);  // the parent died before prctl took effect
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);
+    ::dup2(err_pipe[1], STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    const char msg[] = "cannot execute /usr/bin/python3\n";
+    [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    ::_exit(127);
+  }
+  ::close(err_pipe[1]);
+  std::string errors;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(err_pipe[0], buf, sizeof buf);
+    if (n > 0) {
+      errors.append(buf, static_cast<std::size_t>(n));
+      if (errors.size() > (1 << 20)) errors.erase(0, errors.size() - (1 << 16));  // keep the end
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  ::close(err_pipe[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  if (WIFSIGNALED(status))
+    return fmt::format("drawing with plots/{} was ended by signal {} ({}); no figure was written", script, WTERMSIG(status),
+                       strsignal(WTERMSIG(status)));
+  const std::string why = last_line(errors);
+  if (why.find("No module named") != std::string::npos)
+    return fmt::format("drawing with plots/{} failed: {} (it needs /usr/bin/python3 with numpy and matplotlib, which "
+                       "scripts/install-deps.sh installs)", script, why);
+  return fmt::format("drawing with plots/{} failed (exit code {}): {}", script, WEXITSTATUS(status),
+                     why.empty() ? "no message" : why);
 }
 
 }  // namespace granchain

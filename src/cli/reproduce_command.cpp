@@ -10,9 +10,11 @@
 #include <thread>
 
 #include "cli/input_error.hpp"
+#include "cli/interrupt_message.hpp"
 #include "cli/output_file.hpp"
 #include "cli/reproduce_support.hpp"
 #include "cli/subcommand.hpp"
+#include "cli/value_list.hpp"
 #include "cli/sweep_progress.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"
@@ -48,7 +50,8 @@ const std::vector<FigureEntry>& figures() {
 // report.md for Fig. 5 (the main job's), report-<figure>.md for the others, report-all.md for all.
 std::string report_name(const std::string& figure) { return figure == "fig5" ? "report.md" : "report-" + figure + ".md"; }
 
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_);
+// threads_text: the --threads value as given, or null when the flag was not given.
+int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text);
 
 }  // namespace
 
@@ -81,12 +84,17 @@ Subcommand add_reproduce_command(CLI::App& app) {
   sub_->add_option("--preset", impl_->preset, "quick (default), paper or smoke (a pipeline check)");
   sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
-  sub_->add_option("--threads", impl_->threads, "threads; default all cores");
+  auto threads_text = std::make_shared<std::string>();
+  CLI::Option* threads_option =
+      sub_->add_option("--threads", *threads_text, "points run at once; integer 1 <= threads <= 1024; default all cores")
+          ->type_name("INT");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
   sub_->add_flag("--print-sweeps", impl_->print_sweeps,
                  "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
                  "into one store; reproduce --db STORE then reuses every point) and run nothing");
-  return {sub_, [impl_] { return execute_reproduce(impl_); }};
+  return {sub_, [impl_, threads_option, threads_text] {
+            return execute_reproduce(impl_, threads_option->count() > 0 ? threads_text.get() : nullptr);
+          }};
 }
 
 namespace {
@@ -139,7 +147,7 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
   return kExitOk;
 }
 
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
+int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text) {
   ReproduceFlags o = *impl_;
   std::vector<const FigureEntry*> chosen;
   std::string valid;
@@ -151,18 +159,25 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_) {
     if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all", o.figure, valid));
     if (o.preset != "quick" && o.preset != "paper" && o.preset != "smoke")
       throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
-    if (o.threads < 0 || o.threads > 1024)
-      throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", o.threads));
+    // As sweep validates it; an empty value is given, and refused.
+    if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
     ResultsStore::preflight(o.db);
-    std::filesystem::create_directories(o.out);
-    for (const FigureEntry* f : chosen) check_output_file(output_path(o, report_name(f->name)), "--out");
-    if (o.figure == "all") check_output_file(output_path(o, "report-all.md"), "--out");
+    if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
+      std::error_code ec;
+      if (std::filesystem::exists(o.out, ec) && !std::filesystem::is_directory(o.out, ec))
+        throw InputError(fmt::format("--out: '{}' is a file, not a folder; name a folder for the figures and reports", o.out));
+      std::filesystem::create_directories(o.out, ec);
+      if (ec) throw InputError(fmt::format("--out: cannot create the folder '{}': {}", o.out, ec.message()));
+      for (const FigureEntry* f : chosen) check_output_file(output_path(o, report_name(f->name)), "--out", {{"--db", o.db}});
+      if (o.figure == "all") check_output_file(output_path(o, "report-all.md"), "--out", {{"--db", o.db}});
+    }
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
   if (o.print_sweeps) return print_sweeps(chosen, o);
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
 
   int code = kExitOk;
   std::string all = fmt::format("# granchain reproduce --figure all --preset {}\n\n| figure | label | result | wall time |\n|---|---|---|---|\n", o.preset);

@@ -95,7 +95,7 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
       fam["ec_lines"] = lines;
     }
   const std::string prefix = output_path(o, o.figure);
-  const std::string problem = draw_ncoll_panels(a, prefix);
+  const std::string problem = draw_ncoll_panels(a, prefix, "--out");
   if (!problem.empty()) throw std::runtime_error(problem);
   FigureOutcome out;
   out.exit_code = failures.empty() ? kExitOk : kExitUnphysical;

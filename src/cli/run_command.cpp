@@ -3,13 +3,17 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 
 #include "cli/config_file.hpp"
 #include "cli/input_error.hpp"
+#include "cli/interrupt_message.hpp"
 #include "cli/output_file.hpp"
 #include "cli/run_options.hpp"
 #include "cli/run_report.hpp"
@@ -111,7 +115,7 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   auto& impl = *impl_;
   RunOptions opts;
   const bool json_requested = impl.json_option->count() > 0;
-  const bool json_stdout = json_requested && impl.json_path.empty();
+  const bool json_stdout = json_requested && (impl.json_path.empty() || is_standard_output(impl.json_path));
   try {
     std::map<std::string, RawValue> raw;
     if (!impl.config_path.empty()) {
@@ -130,7 +134,8 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       opts.spec.engine.audit = true;
     }
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
-    if (json_requested && !json_stdout) check_output_file(impl.json_path);
+    if (json_requested && !json_stdout)
+      check_output_file(impl.json_path, "--json", {{"--db", opts.use_db ? opts.db_path : ""}, {"--config", impl.config_path}});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -139,6 +144,7 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     return kExitBadInput;
   }
 
+  announce_on_interrupt("the run did not finish; nothing was stored or written");
   const bool tty = isatty(STDERR_FILENO) != 0;
   const bool show_progress = impl.progress_lines || (tty && !impl.quiet);
   ProgressPrinter printer(tty);
@@ -154,35 +160,48 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     return kExitUnphysical;
   }
 
+  // The run's outputs, all or none: the JSON file is written in full (to a temporary file) inside
+  // the store's transaction and renamed into place only once the run is stored. Only a target that
+  // is not a regular file (a device, a FIFO) or standard output is written after the commit; if
+  // that fails the message says that the run is stored.
   nlohmann::json j = run_result_to_json(result);
   std::string stored;
-  if (opts.use_db) {
-    try {
+  std::unique_ptr<PendingFile> json_file;
+  const bool json_to_file = json_requested && !json_stdout;
+  try {
+    if (opts.use_db) {
       ResultsStore store(opts.db_path);
-      const std::int64_t id = store.insert_run(result);
+      const std::int64_t id = store.insert_run(result, [&](std::int64_t new_id) {
+        j["stored"] = {{"db", opts.db_path}, {"run_id", new_id}};
+        if (json_to_file) json_file = std::make_unique<PendingFile>(impl.json_path, j.dump(2) + "\n", "--json");
+      });
       stored = fmt::format("run {} in {}", id, opts.db_path);
-      j["stored"] = {{"db", opts.db_path}, {"run_id", id}};
-    } catch (const StoreError& e) {
-      fmt::print(stderr, "granchain: error: {}; the run was not stored\n", e.what());
+    } else if (json_to_file) {
+      json_file = std::make_unique<PendingFile>(impl.json_path, j.dump(2) + "\n", "--json");
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}; nothing was stored or written\n", e.what());
+    return kExitStoreFailed;
+  }
+  const std::string kept = stored.empty() ? "" : fmt::format("; the run is stored ({})", stored);
+  try {
+    if (json_file) {
+      json_file->commit();
+      stored += (stored.empty() ? "JSON in " : ", JSON in ") + impl.json_path;
+    }
+    if (json_stdout) write_standard_output(j.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}{}\n", e.what(), kept);
+    return kExitStoreFailed;
+  }
+  if (!impl.quiet && !json_stdout) {
+    fmt::print("{}", run_summary(result, stored));
+    errno = 0;
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      fmt::print(stderr, "granchain: error: cannot write standard output: {}{}\n", std::strerror(errno ? errno : EIO), kept);
       return kExitStoreFailed;
     }
   }
-  if (json_requested) {
-    const std::string text = j.dump(2) + "\n";
-    if (json_stdout) {
-      fmt::print("{}", text);
-    } else {
-      try {
-        write_file_atomically(impl.json_path, text);
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "granchain: error: {}\n", e.what());
-        return kExitStoreFailed;
-      }
-      if (stored.empty()) stored = "JSON in " + impl.json_path;
-      else stored += ", JSON in " + impl.json_path;
-    }
-  }
-  if (!impl.quiet && !json_stdout) fmt::print("{}", run_summary(result, stored));
   return kExitOk;
 }
 

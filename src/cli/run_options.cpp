@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 #include "cli/input_error.hpp"
 #include "engines/engine_factory.hpp"
@@ -118,8 +119,17 @@ const std::vector<Definition>& definitions() {
     }
     d.push_back(real_param("dt-factor", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6", "100",
                            [](double x) { return x >= 10 && x <= 1e6; }, [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
+    // The hard engine declares an inelastic collapse when collapse_collisions (1000) collisions
+    // fall within collapse_time (1e-9). A TC time shorter than that span leaves collisions inside
+    // it inelastic, and the watch can fire although the TC model is on (N = 100, e = 0.05 collapses
+    // at tc = 1e-10, runs at 1e-9); from tc = collapse_time on, every further collision of a
+    // particle inside the span is elastic.
     d.push_back(real_param("tc", "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
-                           "tc >= 0", "0", [](double x) { return x >= 0; },
+                           fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
+                                       "a shorter t_c leaves them inelastic)",
+                                       HardSphereOptions{}.collapse_time, HardSphereOptions{}.collapse_collisions,
+                                       HardSphereOptions{}.collapse_time),
+                           "0", [](double x) { return x == 0 || x >= HardSphereOptions{}.collapse_time; },
                            [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
     d.push_back(real_param("m", "particle mass (unit of mass)", "m > 0", "1",
                            [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.m = x; }));
@@ -144,6 +154,108 @@ const std::vector<Definition>& definitions() {
     return d;
   }();
   return defs;
+}
+
+// ---------------------------------------------------------------------------------------------
+// What the engines resolve in double precision. Each parameter alone has a wide valid range, but
+// together they set two scales that must stay resolvable; a run outside them prints numbers that
+// mean nothing (k = 1e300: tau_c = 2e-150, every contact begins and ends at one clock value) or
+// an exploded column (m = 1e-300: speeds of 1e150, heights of 1e149 after t = 1).
+
+// Resolution steps a scale must span: the exact engine steps over what it cannot resolve in
+// intervals of 1e-6 tau_c (ExactEngine::kResolutionSkip), the reference engine's finest step is
+// tau_c / 1e6 (dt-factor <= 1e6), and heights are asked to resolve d to the same 1e-6.
+constexpr double kResolutionSteps = 1e6;
+
+double ulp(double t) { return std::nextafter(t, std::numeric_limits<double>::infinity()) - t; }
+
+// x to 3 significant digits, rounded into the valid range (down for an upper bound).
+std::string rounded(double x, bool upper) {
+  if (!(x > 0) || !std::isfinite(x)) return fmt::format("{:.3g}", x);
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2);
+  return fmt::format("{:.3g}", (upper ? std::floor(x / unit) : std::ceil(x / unit)) * unit);
+}
+
+// The flag a message names: the first of `names` that was given and fails with every other
+// parameter at its default (fails(name) says so), else the first that was given.
+std::string culprit(const std::vector<std::string>& names, const std::map<std::string, RawValue>& raw,
+                    const std::function<bool(const std::string&)>& fails) {
+  for (const auto& n : names)
+    if (raw.count(n) && fails(n)) return n;
+  for (const auto& n : names)
+    if (raw.count(n)) return n;
+  return names.front();
+}
+
+// The raw value of a flag, or its value in effect when it was not given.
+RawValue given_or(const std::map<std::string, RawValue>& raw, const std::string& name, double value) {
+  const auto it = raw.find(name);
+  return it != raw.end() ? it->second : RawValue{fmt::format("{}", value), ""};
+}
+
+// Time (soft engines). A contact lasts tau_c, with tau_c^2 = m (pi^2 + ln^2 e) / 2k (Eqs. Dd,
+// tauc), and the clock's resolution at the run's last instant t = transient + T is ulp(t) (about
+// 2^-52 t): tau_c >= 1e6 ulp(transient + T), i.e. k <= m (pi^2 + ln^2 e) / (2 tau_min^2). At the
+// paper's T = 1e4 that is k <= 1.49e12 for m = 1.
+void check_contact_time(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
+  if (is_hard_sphere_engine(o.spec.engine.name)) return;
+  const ChainParameters& p = o.spec.params;
+  const double t_end = o.spec.transient + o.spec.T;
+  const auto tau = [](double k, double m, double e) { return contact_time(k, damping_constant(k, e, m), m); };
+  const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= kResolutionSteps * ulp(t); };
+  if (resolved(p.k, p.m, p.e, t_end)) return;
+  const ChainParameters def;
+  const double t_def = (p.N < 50 ? 1e4 : 1e3) * 1.1;
+  const std::string name = culprit({"k", "m", "T", "transient"}, raw, [&](const std::string& n) {
+    if (n == "k") return !resolved(p.k, def.m, def.e, t_def);
+    if (n == "m") return !resolved(def.k, p.m, def.e, t_def);
+    return !resolved(def.k, def.m, def.e, t_end);
+  });
+  const double tau_min = kResolutionSteps * ulp(t_end);
+  const double l2 = std::log(p.e) * std::log(p.e);
+  const double pi2 = std::numbers::pi * std::numbers::pi;
+  std::string range;
+  if (name == "k") {
+    range = fmt::format("0 < k <= {} at m = {}, e = {} and transient + T = {}", rounded(p.m * (pi2 + l2) / (2 * tau_min * tau_min), true),
+                        p.m, p.e, t_end);
+  } else if (name == "m") {
+    range = fmt::format("m >= {} at k = {}, e = {} and transient + T = {}", rounded(2 * p.k * tau_min * tau_min / (pi2 + l2), false),
+                        p.k, p.e, t_end);
+  } else {  // the largest t_end whose ulp, 2^(ilogb(t) - 52), is at most tau_c / 1e6
+    const double t_max = std::ldexp(1.0, 53 + std::ilogb(tau(p.k, p.m, p.e) / kResolutionSteps));
+    range = fmt::format("transient + T < {} at k = {}, m = {} and e = {}", rounded(t_max, true), p.k, p.m, p.e);
+  }
+  out_of_range(name, given_or(raw, name, name == "k" ? p.k : name == "m" ? p.m : o.spec.T),
+               fmt::format("{}: a contact (tau_c = {:.3g} here) must last at least 1e6 times the clock's resolution at t = "
+                           "transient + T ({:.3g})", range, tau(p.k, p.m, p.e), ulp(t_end)));
+}
+
+// Heights (all engines). The floor throws particles to heights of order k_B T0 / (m g) above a
+// stack of N d. Profiles are sampled as absolute heights (and the reference engine integrates
+// them), resolved to 2^-52 of the column's height scale; for that to resolve d to 1e-6,
+// N d + T0/(m g) <= R d with R = 2^52 / 1e6 = 4.5e9.
+void check_height_scale(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
+  const ChainParameters& p = o.spec.params;
+  const double R = std::ldexp(1.0, 52) / kResolutionSteps;
+  // Written as quotients, so that T0 / m overflowing to infinity fails the check.
+  const auto resolved = [&](double kT0, double m, double g, double d) { return kT0 / m / g / d + p.N <= R; };
+  if (resolved(p.kT0, p.m, p.g, p.d)) return;
+  const ChainParameters def;
+  const std::string name = culprit({"m", "T0", "g", "d"}, raw, [&](const std::string& n) {
+    if (n == "m") return !resolved(def.kT0, p.m, def.g, def.d);
+    if (n == "T0") return !resolved(p.kT0, def.m, def.g, def.d);
+    if (n == "g") return !resolved(def.kT0, def.m, p.g, def.d);
+    return !resolved(def.kT0, def.m, def.g, p.d);
+  });
+  const double room = R - p.N;  // T0 / (m g d) may be at most this
+  std::string range;
+  if (name == "m") range = fmt::format("m >= {} at T0 = {}, g = {}, d = {}", rounded(p.kT0 / p.g / p.d / room, false), p.kT0, p.g, p.d);
+  else if (name == "T0") range = fmt::format("0 < T0 <= {} at m = {}, g = {}, d = {}", rounded(p.m * p.g * p.d * room, true), p.m, p.g, p.d);
+  else if (name == "g") range = fmt::format("g >= {} at T0 = {}, m = {}, d = {}", rounded(p.kT0 / p.m / p.d / room, false), p.kT0, p.m, p.d);
+  else range = fmt::format("d >= {} at T0 = {}, m = {}, g = {}", rounded(p.kT0 / p.m / p.g / room, false), p.kT0, p.m, p.g);
+  out_of_range(name, given_or(raw, name, name == "m" ? p.m : name == "T0" ? p.kT0 : name == "g" ? p.g : p.d),
+               fmt::format("{} and N = {}: the column's height scale N d + T0 / (m g) must stay below {:.2g} d, where heights "
+                           "resolve d to 1e-6", range, p.N, R));
 }
 
 }  // namespace
@@ -187,6 +299,8 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   if (o.spec.T < o.spec.sample_interval)
     throw InputError(fmt::format("--T = {} is shorter than --sample-interval = {}; valid range: T >= sample-interval",
                                  o.spec.T, o.spec.sample_interval));
+  check_contact_time(o, raw);
+  check_height_scale(o, raw);
   return o;
 }
 

@@ -281,9 +281,9 @@ std::string analysis_text(const StoreAnalysis& a) {
   return out;
 }
 
-std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix) {
+std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option) {
   try {
-    write_file_atomically(prefix + ".json", a.json.dump(1) + "\n", "--plot");
+    write_file_atomically(prefix + ".json", a.json.dump(1) + "\n", option);
   } catch (const std::exception& e) {
     return e.what();
   }

@@ -48,6 +48,7 @@ nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& 
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
 std::string analysis_text(const StoreAnalysis& a);
 // Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>.png/.pdf; "" or what went wrong.
-std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix);
+// `option` names the flag that chose the prefix, for messages.
+std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option = "--plot");
 
 }  // namespace granchain

@@ -12,7 +12,7 @@ enum ExitCode : int {
   kExitOk = 0,
   kExitBadInput = 2,     // bad flag, value, config file or output path; nothing written
   kExitUnphysical = 3,   // the simulation turned unphysical; no result printed or stored
-  kExitStoreFailed = 4,  // the results store could not be written; the run is not stored
+  kExitStoreFailed = 4,  // an output (results store, file, standard output) could not be written; the message says what was kept
 };
 
 struct Subcommand {

@@ -10,10 +10,14 @@
 #include <cstdio>
 #include <map>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "cli/config_file.hpp"
 #include "cli/input_error.hpp"
+#include "cli/interrupt_message.hpp"
 #include "cli/run_options.hpp"
+#include "cli/value_list.hpp"
 #include "store/results_store.hpp"
 #include "sweep/mpi_sweep.hpp"
 #include "sweep/sweep_grid.hpp"
@@ -44,12 +48,23 @@ bool is_grid(const std::string& name) {
 }
 
 long long integer_in(const std::string& option, const std::string& text, long long lo, long long hi) {
-  long long x = 0;
-  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
-  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || x < lo || x > hi)
-    throw InputError(fmt::format("{} = '{}' is not valid; valid range: integer {} <= {} <= {}", option, text, lo,
-                                 option.substr(2), hi));
-  return x;
+  return parse_integer_in(text, option, lo, hi);
+}
+
+// --shard i/n: the whole value is quoted in every message ('1/3/5', not '3/5').
+std::pair<int, int> parse_shard(const std::string& text) {
+  const std::string range = "i/n with integers 1 <= i <= n <= 100000";
+  const auto slash = text.find('/');
+  if (slash == std::string::npos || text.find('/', slash + 1) != std::string::npos)
+    throw InputError(fmt::format("--shard = '{}' is not valid; valid: {}", text, range));
+  long long i = 0, n = 0;
+  try {
+    n = parse_integer_in(text.substr(slash + 1), "--shard", 1, 100000);
+    i = parse_integer_in(text.substr(0, slash), "--shard", 1, n);
+  } catch (const InputError&) {
+    throw InputError(fmt::format("--shard = '{}' is not valid; valid: {}", text, range));
+  }
+  return {static_cast<int>(i), static_cast<int>(n)};
 }
 
 }  // namespace
@@ -144,16 +159,12 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
         }
       }
     }
-    if (auto v = take("replicas", impl.replicas, !impl.replicas.empty()))
+    // A flag given with an empty value ("--shard ''") is given, and refused as such.
+    const auto given = [&](const char* flag) { return sub_->get_option(flag)->count() > 0; };
+    if (auto v = take("replicas", impl.replicas, given("--replicas")))
       def.replicas = static_cast<int>(integer_in("--replicas", v->text, 1, 1000000));
-    if (!impl.threads.empty()) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
-    if (!impl.shard.empty()) {
-      const auto slash = impl.shard.find('/');
-      const std::string range = "i/n with integers 1 <= i <= n <= 100000";
-      if (slash == std::string::npos) throw InputError(fmt::format("--shard = '{}' is not valid; valid: {}", impl.shard, range));
-      shard_n = static_cast<int>(integer_in("--shard", impl.shard.substr(slash + 1), 1, 100000));
-      shard_i = static_cast<int>(integer_in("--shard", impl.shard.substr(0, slash), 1, shard_n));
-    }
+    if (given("--threads")) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
+    if (given("--shard")) std::tie(shard_i, shard_n) = parse_shard(impl.shard);
     if (sub_->get_option("--progress-every")->count() > 0 && !(impl.progress_every > 0))
       throw InputError(fmt::format("--progress-every = {} is out of range; valid range: > 0", impl.progress_every));
     points = build_sweep_points(def);
@@ -209,6 +220,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     return kExitOk;
   }
 
+  announce_on_interrupt(fmt::format("every point that finished is stored in {}; repeat the same command to run the rest", db_path));
   const bool tty = isatty(STDERR_FILENO) != 0;
   // On a terminal one line rewritten in place; otherwise (a batch job's log) a line every 10 s.
   const bool show_progress = rank0 && (impl.progress_lines || !impl.quiet);

@@ -114,7 +114,7 @@ namespace {
 int execute_theory(const std::shared_ptr<TheoryFlags>& impl_) {
   auto& impl = *impl_;
   const bool json_requested = impl.json_option->count() > 0;
-  const bool json_stdout = json_requested && impl.json_path.empty();
+  const bool json_stdout = json_requested && (impl.json_path.empty() || is_standard_output(impl.json_path));
   try {
     for (int N : impl.N) {
       if (N < 1 || N > 1000000000) throw InputError(fmt::format("--N: {} is out of range; valid: integers 1 <= N <= 1e9", N));
@@ -128,11 +128,16 @@ int execute_theory(const std::shared_ptr<TheoryFlags>& impl_) {
     return kExitBadInput;
   }
   const nlohmann::json j = theory_json(impl.N, impl.e);
-  if (json_stdout) {
-    fmt::print("{}\n", j.dump(2));
-    return kExitOk;
+  try {
+    if (json_stdout) {
+      write_standard_output(j.dump(2) + "\n");
+      return kExitOk;
+    }
+    if (json_requested) write_file_atomically(impl.json_path, j.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
   }
-  if (json_requested) write_file_atomically(impl.json_path, j.dump(2) + "\n");
   fmt::print("{}", theory_table(j));
   return kExitOk;
 }

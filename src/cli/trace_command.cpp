@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <memory>
+
 #include <cmath>
 #include <map>
 
@@ -83,8 +85,8 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0))
       throw InputError("--a, --v0, --dv0: valid ranges a >= 0, v0 > 0, dv0 >= 0");
     check_output_file(o.output, "--output");
-    if (!o.events_path.empty()) check_output_file(o.events_path, "--events");
-    if (!o.plot_path.empty()) check_output_file(o.plot_path, "--plot");
+    if (!o.events_path.empty()) check_output_file(o.events_path, "--events", {{"--output", o.output}});
+    if (!o.plot_path.empty()) check_output_file(o.plot_path, "--plot", {{"--output", o.output}, {"--events", o.events_path}});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -96,9 +98,12 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; nothing was written\n", e.what());
     return kExitUnphysical;
   }
-  try {
-    write_file_atomically(o.output, samples_csv(tr), "--output");
-    if (!o.events_path.empty()) write_file_atomically(o.events_path, events_csv(tr), "--events");
+  try {  // both files or neither: each is written in full before either is put in place
+    PendingFile samples(o.output, samples_csv(tr), "--output");
+    std::unique_ptr<PendingFile> events;
+    if (!o.events_path.empty()) events = std::make_unique<PendingFile>(o.events_path, events_csv(tr), "--events");
+    samples.commit();
+    if (events) events->commit();
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitStoreFailed;

@@ -52,6 +52,16 @@ double tidy(double x) {
 
 }  // namespace
 
+long long parse_integer_in(const std::string& text, const std::string& option, long long lo, long long hi) {
+  long long x = 0;
+  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || x < lo || x > hi) {
+    const std::string name = option.rfind("--", 0) == 0 ? option.substr(2) : option;
+    throw InputError(fmt::format("{} = '{}' is not valid; valid range: integer {} <= {} <= {}", option, text, lo, name, hi));
+  }
+  return x;
+}
+
 std::vector<std::string> parse_name_list(const std::string& text) {
   std::vector<std::string> names;
   for (std::string& item : split(text, ','))
@@ -61,6 +71,10 @@ std::vector<std::string> parse_name_list(const std::string& text) {
 
 std::vector<double> parse_value_list(const std::string& text, const std::string& option) {
   std::vector<double> values;
+  const auto too_many = [&] {
+    throw InputError(fmt::format("{} = '{}': the list has more than {} values; valid: at most {} values in all", option, text,
+                                 kMaxValues, kMaxValues));
+  };
   for (const std::string& item : split(text, ',')) {
     const std::vector<std::string> parts = split(item, ':');
     if (parts.size() == 1) {
@@ -75,26 +89,41 @@ std::vector<double> parse_value_list(const std::string& text, const std::string&
     const double last = number(parts[1], option, text);
     const bool geometric = !parts[2].empty() && (parts[2][0] == 'x' || parts[2][0] == 'X');
     const double step = number(geometric ? parts[2].substr(1) : parts[2], option, text);
-    std::size_t count = 0;
+    // The number of intervals as a double, checked before it becomes an integer: a tiny step or a
+    // factor next to 1 gives a count beyond any integer type (or infinity), whose conversion would
+    // be undefined. The logarithms are subtracted, not the quotient taken, so that last / first
+    // cannot overflow (1e-300:1e300:x10 is 601 values).
+    double intervals = 0;
     if (geometric) {
       if (!(first > 0 && last >= first && step > 1)) {
         throw InputError(fmt::format("{} = '{}': a geometric range needs 0 < first <= last and a factor > 1", option, text));
       }
-      const double n = std::floor(std::log(last / first) / std::log(step) + 1e-9);
-      count = static_cast<std::size_t>(n) + 1;
-      if (count > kMaxValues) throw InputError(fmt::format("{} = '{}': more than {} values", option, text, kMaxValues));
-      for (std::size_t i = 0; i < count; ++i) values.push_back(tidy(first * std::pow(step, static_cast<double>(i))));
+      intervals = std::floor((std::log(last) - std::log(first)) / std::log(step) + 1e-9);
     } else {
       if (!(step > 0 && last >= first)) {
         throw InputError(fmt::format("{} = '{}': a range needs first <= last and a step > 0", option, text));
       }
-      const double n = std::floor((last - first) / step + 1e-9);
-      count = static_cast<std::size_t>(n) + 1;
-      if (count > kMaxValues) throw InputError(fmt::format("{} = '{}': more than {} values", option, text, kMaxValues));
+      const double span = last - first;  // infinite only for first and last near -+1.8e308
+      intervals = std::floor((std::isfinite(span) ? span / step : last / step - first / step) + 1e-9);
+    }
+    const double limit = static_cast<double>(kMaxValues);
+    if (!(intervals + 1 <= limit)) {
+      const std::string count = std::isfinite(intervals) ? fmt::format("{:.3g} values", intervals + 1) : "too many values to count";
+      const std::string which = item == text ? "the range" : fmt::format("the range '{}'", item);
+      throw InputError(fmt::format("{} = '{}': {} has {}; valid: at most {} values (a larger {})", option, text, which, count,
+                                   kMaxValues, geometric ? "factor" : "step"));
+    }
+    if (static_cast<double>(values.size()) + intervals + 1 > limit) too_many();
+    const auto count = static_cast<std::size_t>(intervals) + 1;
+    for (std::size_t i = 0; i < count; ++i) {
       // first + i * step (not accumulated), then tidied: 0.80:0.90:0.002 gives 0.8, 0.802, ..., 0.9.
-      for (std::size_t i = 0; i < count; ++i) values.push_back(tidy(first + static_cast<double>(i) * step));
+      double x = geometric ? first * std::pow(step, static_cast<double>(i)) : first + static_cast<double>(i) * step;
+      // step^i alone may overflow where first * step^i does not (1e-300:1e300:x10).
+      if (geometric && !std::isfinite(x)) x = std::exp(std::log(first) + static_cast<double>(i) * std::log(step));
+      values.push_back(tidy(x));
     }
   }
+  if (values.size() > kMaxValues) too_many();
   return values;
 }
 

@@ -7,8 +7,13 @@
 
 namespace granchain {
 
-// Throws InputError naming `option` on malformed text or a range of more than 100000 values.
+// Throws InputError naming `option` on malformed text or a list of more than 100000 values (a range
+// whose count is too large to represent included).
 std::vector<double> parse_value_list(const std::string& text, const std::string& option);
+
+// One integer lo <= x <= hi, written in full ("12", not "1.2e1" or ""). Throws InputError
+// "<option> = '<text>' is not valid; valid range: integer lo <= <name> <= hi".
+long long parse_integer_in(const std::string& text, const std::string& option, long long lo, long long hi);
 
 // Names separated by commas ("exact, reference"), blanks dropped, empty items skipped.
 std::vector<std::string> parse_name_list(const std::string& text);

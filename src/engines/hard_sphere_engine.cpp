@@ -176,12 +176,20 @@ void HardSphereEngine::watch_collapse(double t, int pair) {
   const bool floor_involved = *lo < 0;
   const int first = floor_involved ? 1 : *lo + 1;
   const int last = floor_involved && *hi < 0 ? 1 : *hi + 2;
-  throw InelasticCollapseError(
-      t, first, last, collisions_,
-      fmt::format("inelastic collapse at t = {:.12g}: {} collisions of particles {}..{}{} within {:.3g} "
-                  "(after {} collisions in all); hard spheres collide infinitely often here. "
-                  "Use the TC model (tc > 0) or a soft engine to continue",
-                  t, m, first, last, floor_involved ? " and the floor" : "", span, collisions_));
+  // With the TC model on, the collisions inside the span stayed inelastic because tc is shorter
+  // than the intervals between a particle's collisions there; a tc of at least collapse_time makes
+  // every further collision of a particle inside the span elastic.
+  const std::string remedy =
+      options_.tc > 0
+          ? fmt::format("the TC model did not prevent it: tc = {:g} is shorter than the span the engine watches ({} "
+                        "collisions within {:g}); use tc >= {:g} or a soft engine",
+                        options_.tc, m, options_.collapse_time, options_.collapse_time)
+          : fmt::format("hard spheres collide infinitely often here. Use the TC model (tc >= {:g}) or a soft engine to continue",
+                        options_.collapse_time);
+  throw InelasticCollapseError(t, first, last, collisions_,
+                               fmt::format("inelastic collapse at t = {:.12g}: {} collisions of particles {}..{}{} within {:.3g} "
+                                           "(after {} collisions in all); {}",
+                                           t, m, first, last, floor_involved ? " and the floor" : "", span, collisions_, remedy));
 }
 
 void HardSphereEngine::advance_to(double t, EventSink& sink) {

@@ -137,30 +137,45 @@ std::string cannot_create_file_reason(const std::string& path) {
   return "";
 }
 
-void ResultsStore::preflight(const std::string& path) {
+void ResultsStore::preflight(const std::string& path, Access access, const std::string& option) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  const bool read_only = access == Access::ReadOnly;
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
-    if (!fs::is_regular_file(path, ec)) throw StoreError(fmt::format("--db: '{}' is not a regular file", path));
-    if (access(path.c_str(), R_OK | W_OK) != 0) throw StoreError(fmt::format("--db: '{}' is not readable and writable", path));
+    if (!fs::is_regular_file(path, ec)) throw StoreError(fmt::format("{}: '{}' is not a regular file", option, path));
+    if (::access(path.c_str(), read_only ? R_OK : R_OK | W_OK) != 0)
+      throw StoreError(fmt::format("{}: '{}' is not {}", option, path, read_only ? "readable" : "readable and writable"));
     sqlite3* db = nullptr;
     const int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
     std::string problem;
+    auto busy = [](int code) { return (code & 0xff) == SQLITE_BUSY || (code & 0xff) == SQLITE_LOCKED; };
     if (rc != SQLITE_OK) {
       problem = "cannot be opened";
     } else {
+      sqlite3_busy_timeout(db, 60000);  // a writer holding the store: wait as writers do
       sqlite3_stmt* st = nullptr;
-      if (sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key='schema_version'", -1, &st, nullptr) != SQLITE_OK) {
+      const int prc = sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key='schema_version'", -1, &st, nullptr);
+      if (busy(prc) || busy(sqlite3_extended_errcode(db))) {
+        problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
+      } else if (prc != SQLITE_OK) {
         // A database without our meta table: acceptable only if it is empty.
         sqlite3_stmt* any = nullptr;
-        if (sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &any, nullptr) != SQLITE_OK) {
+        const int arc = sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &any, nullptr);
+        if (busy(arc)) {
+          problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
+        } else if (arc != SQLITE_OK) {
           problem = "is not an SQLite database";
-        } else if (sqlite3_step(any) == SQLITE_ROW && sqlite3_column_int(any, 0) != 0) {
-          problem = "is an SQLite database but not a granchain results store";
+        } else {
+          const int step = sqlite3_step(any);
+          if (busy(step)) problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
+          else if (step == SQLITE_ROW && sqlite3_column_int(any, 0) != 0) problem = "is an SQLite database but not a granchain results store";
         }
         sqlite3_finalize(any);
       } else {
-        if (sqlite3_step(st) == SQLITE_ROW) {
+        const int step = sqlite3_step(st);
+        if (busy(step)) {
+          problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
+        } else if (step == SQLITE_ROW) {
           const int v = sqlite3_column_int(st, 0);
           if (v != kStoreSchemaVersion) problem = fmt::format("has store schema version {}, this build reads {}", v, kStoreSchemaVersion);
         }
@@ -168,18 +183,30 @@ void ResultsStore::preflight(const std::string& path) {
       }
     }
     sqlite3_close(db);
-    if (!problem.empty()) throw StoreError(fmt::format("--db: '{}' {}", path, problem));
+    if (!problem.empty()) throw StoreError(fmt::format("{}: '{}' {}", option, path, problem));
     return;
   }
+  if (read_only) {
+    if (fs::is_directory(path, ec)) throw StoreError(fmt::format("{}: '{}' is a folder, not a results store", option, path));
+    throw StoreError(fmt::format("{}: '{}' does not exist", option, path));
+  }
   const std::string reason = cannot_create_file_reason(path);
-  if (!reason.empty()) throw StoreError("--db: " + reason);
+  if (!reason.empty()) throw StoreError(option + ": " + reason);
 }
 
 ResultsStore::ResultsStore(const std::string& path) : path_(path) {
+  std::error_code ec;
+  const bool created = !std::filesystem::exists(path, ec);
+  // A store this constructor created and could not set up (a full disk) is removed again, so no
+  // empty file is left behind.
+  auto remove_created = [&] {
+    if (created) std::filesystem::remove(path, ec);
+  };
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
+    remove_created();
     throw StoreError(fmt::format("--db: cannot open '{}': {}", path, msg));
   }
   sqlite3_busy_timeout(db_, 60000);  // concurrent writers (parallel runs) wait instead of failing
@@ -192,6 +219,7 @@ ResultsStore::ResultsStore(const std::string& path) : path_(path) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     sqlite3_close(db_);
     db_ = nullptr;
+    remove_created();
     throw;
   }
 }
@@ -220,13 +248,14 @@ std::int64_t ResultsStore::in_transaction(Write write) {
   }
 }
 
-std::int64_t ResultsStore::insert_run(const RunResult& r) {
+std::int64_t ResultsStore::insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit) {
   return in_transaction([&] {
     const std::int64_t id = append_run(r);
     SqlStatement key(db_, "INSERT OR IGNORE INTO run_points(point_key, run_id) VALUES(?,?)");
     key.bind(1, point_key(r.spec));
     key.bind(2, id);
     key.run();
+    if (before_commit) before_commit(id);
     return id;
   });
 }

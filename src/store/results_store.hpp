@@ -3,6 +3,7 @@
 // profiles in `profiles`. Every run is written in one transaction, so an interrupted or failed
 // run leaves no partial row (SQLite's atomic commit holds even through kill -9 or power loss).
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <map>
 #include <string>
@@ -34,8 +35,12 @@ std::string cannot_create_file_reason(const std::string& path);
 class ResultsStore {
  public:
   // Checks, without creating or changing anything, that `path` can hold a store: an existing
-  // file must be a granchain store of a known schema; a new file needs a writable folder.
-  static void preflight(const std::string& path);
+  // file must be a granchain store of a known schema; a new file needs a writable folder. ReadOnly:
+  // the store must exist and be readable (a read-only file or mount is fine). A store that another
+  // process holds locked is waited for (up to 60 s, as writers do) and then reported as busy.
+  // Messages start with `option` (the flag that named the store).
+  enum class Access { ReadWrite, ReadOnly };
+  static void preflight(const std::string& path, Access access = Access::ReadWrite, const std::string& option = "--db");
 
   explicit ResultsStore(const std::string& path);  // opens or creates
   ~ResultsStore();
@@ -44,7 +49,9 @@ class ResultsStore {
 
   // Appends one run with its profiles in one transaction and returns its id. Its point key
   // (sweep/sweep_grid.hpp) is recorded too unless an earlier run already holds it.
-  std::int64_t insert_run(const RunResult& r);
+  // before_commit, when given, runs inside that transaction with the new id (for example to write
+  // an output that must exist exactly when the run is stored); if it throws, nothing is stored.
+  std::int64_t insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit = {});
   // A sweep point: in one transaction, appends the run, its profiles and its key unless a run
   // with that key is already stored. Returns the run's id and whether it was appended now.
   struct Stored {

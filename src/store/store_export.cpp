@@ -73,8 +73,7 @@ nlohmann::ordered_json json_field(SqlStatement& row, int i) {
 }  // namespace
 
 std::string export_results(const std::string& db_path, const ExportSelection& sel, ExportFormat format) {
-  if (access(db_path.c_str(), F_OK) != 0) throw StoreError(fmt::format("--db: '{}' does not exist", db_path));
-  ResultsStore::preflight(db_path);
+  ResultsStore::preflight(db_path, ResultsStore::Access::ReadOnly);
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     sqlite3_close(db);

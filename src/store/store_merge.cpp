@@ -247,9 +247,9 @@ MergeReport merge_stores(const std::string& target, const std::vector<std::strin
     struct stat st {};
     if (stat(s.c_str(), &st) != 0) throw StoreError(fmt::format("merge: source '{}' does not exist", s));
     if (same_file(s, target)) throw StoreError(fmt::format("merge: source '{}' is the target itself", s));
-    ResultsStore::preflight(s);
+    ResultsStore::preflight(s, ResultsStore::Access::ReadOnly, "merge source");
   }
-  ResultsStore::preflight(target);
+  ResultsStore::preflight(target, ResultsStore::Access::ReadWrite, "--into");
   struct stat st {};
   const bool existed = stat(target.c_str(), &st) == 0;
   try {

@@ -70,9 +70,15 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
 
   std::vector<SweepPoint> points;
-  const std::size_t expected = Ns.size() * es.size() * ks.size() * T0s.size() * Ts.size() * engines.size() *
-                               static_cast<std::size_t>(def.replicas);
-  if (expected > 10'000'000) throw InputError(fmt::format("the sweep has {} points; at most 10000000", expected));
+  // Counted in double: six lists of up to 100000 values and 1000000 replicas multiply to more
+  // than a 64-bit integer holds, and a wrapped product would pass the limit.
+  constexpr double kMaxPoints = 10'000'000;
+  const double expected = static_cast<double>(Ns.size()) * static_cast<double>(es.size()) * static_cast<double>(ks.size()) *
+                          static_cast<double>(T0s.size()) * static_cast<double>(Ts.size()) * static_cast<double>(engines.size()) *
+                          static_cast<double>(def.replicas);
+  if (expected > kMaxPoints)
+    throw InputError(fmt::format("the sweep has {:.4g} points (values of --N x --e x --k x --T0 x --T x --engine x --replicas); valid: at most {:.0f}",
+                                 expected, kMaxPoints));
   for (const auto& engine : engines) {
     const bool hard = is_hard_sphere_engine(engine);
     for (const auto& N : Ns)

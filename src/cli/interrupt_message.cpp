@@ -1,0 +1,52 @@
+#include "cli/interrupt_message.hpp"
+
+#include <fmt/format.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+namespace granchain {
+
+namespace {
+
+// The messages, formatted before any signal can arrive: the handler only writes and re-raises
+// (both async-signal-safe).
+std::array<char, 1024> sigint_message{}, sigterm_message{};
+std::size_t sigint_length = 0, sigterm_length = 0;
+std::array<char, 4096> unfinished{};
+
+void on_signal(int sig) {
+  const char* msg = sig == SIGINT ? sigint_message.data() : sigterm_message.data();
+  const std::size_t len = sig == SIGINT ? sigint_length : sigterm_length;
+  if (unfinished[0] != '\0') ::unlink(unfinished.data());
+  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, len);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+template <std::size_t Size>
+std::size_t store(std::array<char, Size>& buffer, const std::string& text) {
+  const std::size_t len = std::min(text.size(), buffer.size() - 1);
+  std::memcpy(buffer.data(), text.data(), len);
+  buffer[len] = '\0';
+  return len;
+}
+
+}  // namespace
+
+void announce_on_interrupt(const std::string& what_was_kept, const std::string& unfinished_file) {
+  store(unfinished, unfinished_file.size() < unfinished.size() ? unfinished_file : std::string());
+  sigint_length = store(sigint_message, fmt::format("\ngranchain: interrupted by SIGINT; {}\n", what_was_kept));
+  sigterm_length = store(sigterm_message, fmt::format("\ngranchain: interrupted by SIGTERM; {}\n", what_was_kept));
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+}  // namespace granchain

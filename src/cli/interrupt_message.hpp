@@ -1,0 +1,15 @@
+#pragma once
+// What a command says when it is interrupted (Ctrl-C, SIGTERM from a batch system): one line on
+// standard error saying what was kept and how to resume, then the process ends by that signal as
+// before (exit status 130 for SIGINT, 143 for SIGTERM), so the results store's transactions and
+// the shell's conventions are untouched.
+#include <string>
+
+namespace granchain {
+
+// Installs handlers for SIGINT and SIGTERM that print
+// "granchain: interrupted by SIGINT|SIGTERM; <what_was_kept>", remove `unfinished_file` (a
+// temporary file being written, if any) and then re-raise the signal.
+void announce_on_interrupt(const std::string& what_was_kept, const std::string& unfinished_file = "");
+
+}  // namespace granchain

@@ -1,0 +1,225 @@
+// Bad input on the command line, one table: each row is a command, the exit code it must give,
+// words its standard error must contain, and files of its folder that it must leave as they were.
+// Rows that give exit code 2 must also print exactly one line, "granchain: error: ...", on
+// standard error and nothing on standard output. Rows with exit code 0 are the cases next to the
+// refused ones that must keep working.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "temp_dir.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BadInputRow {
+  // Arguments after `granchain`, as a shell reads them. It runs in a fresh copy of the prepared
+  // folder (see prepare_folder), which is also its working folder; {dir} stands for that folder's path.
+  std::string args;
+  int exit_code;
+  // Each must occur in standard error.
+  std::vector<std::string> stderr_words;
+  // Paths relative to the folder that must hold the same bytes afterwards; "*" means the whole
+  // folder: no file added, removed or changed.
+  std::vector<std::string> unchanged;
+  // Each must occur in standard output.
+  std::vector<std::string> stdout_words = {};
+};
+
+const std::vector<std::string> kAll = {"*"};
+
+// clang-format off
+const std::vector<BadInputRow> kRows = {
+    // Ranges whose number of values cannot be represented or exceeds 100000 values per list, and
+    // grids of more than 10^7 points, however large their product.
+    {"sweep --e 0.1:0.9:1e-300 --dry-run", 2, {"--e = '0.1:0.9:1e-300'", "8e+299 values", "at most 100000 values"}, kAll},
+    {"sweep --e 0.1:0.9:1e-10 --T 1 --dry-run", 2, {"--e", "8e+09 values", "at most 100000 values"}, kAll},
+    {"sweep --k 1e4:1e8:x1.0000000000000002 --dry-run", 2, {"--k", "at most 100000 values", "a larger factor"}, kAll},
+    {"sweep --k -1e308:1e308:1e-320 --dry-run", 2, {"--k", "too many values to count"}, kAll},
+    {"sweep --N 1:60000:1,1:60000:1 --dry-run", 2, {"--N", "more than 100000 values", "in all"}, kAll},
+    {"sweep --N 1:100000:1 --e 1e-5:1:1e-5 --T0 1:100000:1 --T 1:100000:1 --replicas 1000000 --dry-run", 2,
+     {"1e+26 points", "--replicas", "at most 10000000"}, kAll},
+    {"sweep --N 3 --T 1 --e 1e-300:1:x1e100 --dry-run", 0, {}, {"store.db"}, {"# 4 points"}},
+    {"sweep --N 3 --T 1 --e 0.80:0.90:0.05 --dry-run", 0, {}, {"store.db"}, {"# 3 points"}},
+    {"sweep --e 0.9:0.8:0.01 --dry-run", 2, {"--e", "first <= last"}, kAll},
+    {"sweep --e 0.8:0.9 --dry-run", 2, {"--e", "not a value or a range"}, kAll},
+
+    // Parameter files: only regular files, at most 1 MiB, read to the end without an error.
+    {"run --config {dir}/adir --T 1 --db store.db", 2, {"--config", "is a directory", "at most 1 MiB"}, kAll},
+    {"run --config /proc/self/mem --T 1", 2, {"--config", "'/proc/self/mem'", "cannot read"}, kAll},
+    {"run --config /dev/zero --T 1", 2, {"--config", "'/dev/zero'", "character device", "1 MiB"}, kAll},
+    {"run --config big.toml --T 1", 2, {"--config", "larger than 1 MiB"}, kAll},
+    {"run --config missing.toml --T 1", 2, {"--config", "cannot read", "No such file"}, kAll},
+    {"sweep --sweep adir --dry-run", 2, {"--sweep", "is a directory"}, kAll},
+    {"sweep --sweep /dev/zero --dry-run", 2, {"--sweep", "character device"}, kAll},
+
+    // A key set twice, in JSON (as written, or spelled with '_' and '-') as in TOML.
+    {"run --config dup.json --T 1", 2, {"--config", "'dup.json'", "'N' is set twice"}, kAll},
+    {"run --config dup_spelling.json --T 1", 2, {"--config", "'dt-factor' is set twice"}, kAll},
+    {"sweep --sweep dup.json --dry-run", 2, {"--sweep", "'N' is set twice"}, kAll},
+    {"run --config dup.toml --T 1", 2, {"--config", "'N' is set twice"}, kAll},
+    {"run --config bad.json --T 1", 2, {"--config", "not valid JSON"}, kAll},
+    {"run --config params.json --no-db", 0, {}, {"params.json", "store.db"}, {"N = 3"}},
+
+    // --shard, --threads, --replicas: an empty value is given, and the whole value is quoted.
+    {"sweep --shard '' --T 1 --dry-run", 2, {"--shard = ''", "1 <= i <= n <= 100000"}, kAll},
+    {"sweep --shard 1/3/5 --T 1 --dry-run", 2, {"--shard = '1/3/5'"}, kAll},
+    {"sweep --shard 3/2 --T 1 --dry-run", 2, {"--shard = '3/2'"}, kAll},
+    {"sweep --threads '' --T 1 --dry-run", 2, {"--threads = ''", "1 <= threads <= 1024"}, kAll},
+    {"sweep --replicas '' --T 1 --dry-run", 2, {"--replicas = ''"}, kAll},
+    {"sweep --threads 0 --T 1 --dry-run", 2, {"--threads = '0'", "1 <= threads <= 1024"}, kAll},
+
+    // reproduce takes --threads as sweep does.
+    {"reproduce --threads 0 --db store.db", 2, {"--threads = '0'", "1 <= threads <= 1024"}, kAll},
+    {"reproduce --threads 1025 --db store.db", 2, {"--threads = '1025'", "1 <= threads <= 1024"}, kAll},
+    {"reproduce --threads '' --db store.db", 2, {"--threads = ''"}, kAll},
+
+    // The TC time must reach the span of the hard engine's collapse watch.
+    {"run --engine hard --tc 1e-12 --T 1 --db store.db", 2, {"--tc = 1e-12", "tc >= 1e-09"}, kAll},
+    {"sweep --engine hard --tc 1e-12 --T 1 --dry-run", 2, {"--tc"}, kAll},
+    {"run --engine hard --tc 1e-9 --N 3 --T 1 --no-db", 0, {}, kAll, {"engine hard"}},
+
+    // k, m, T, T0, g, d: a contact must last 1e6 clock resolutions, heights must resolve d.
+    {"run --k 1e300", 2, {"--k = 1e300", "k <= 1.49e+12", "tau_c"}, kAll},
+    {"run --m 1e-300", 2, {"--m = 1e-300", "m >= ", "tau_c"}, kAll},
+    {"run --engine hard --m 1e-300 --db {dir}/store.db", 2, {"--m = 1e-300", "m >= ", "height scale"}, kAll},
+    {"run --T 1e20", 2, {"--T = 1e20", "transient + T <"}, kAll},
+    {"run --T0 1e20", 2, {"--T0 = 1e20", "T0 <= "}, kAll},
+    {"sweep --k 1e4,1e300 --T 1 --dry-run", 2, {"--k", "k <= "}, kAll},
+    {"run --k 1e12 --N 3 --T 1 --no-db", 0, {}, kAll, {"k = 1e+12"}},
+
+    // An output that is one of the command's inputs (the same file, however named, existing or
+    // about to be created) is refused before anything runs.
+    {"run --N 2 --T 1 --db store.db --json store.db", 2, {"--json: 'store.db' is the same file as --db 'store.db'"}, kAll},
+    {"run --N 2 --T 1 --db {dir}/store.db --json ./store.db", 2, {"--json", "is the same file as --db"}, kAll},
+    {"run --N 2 --T 1 --db new.db --json new.db", 2, {"--json: 'new.db' is the same file as --db 'new.db'"}, kAll},
+    {"run --config params.json --no-db --json params.json", 2, {"--json", "is the same file as --config"}, kAll},
+    {"export --db store.db -o store.db", 2, {"--output: 'store.db' is the same file as --db"}, kAll},
+    {"export --db store.db -o store.db --format json", 2, {"--output", "is the same file as --db"}, kAll},
+    {"analyze --db store.db --json store.db", 2, {"--json: 'store.db' is the same file as --db"}, kAll},
+    {"analyze --db store.db --plot store", 0, {}, {"store.db"}},
+    {"collapse --N 3 --e 0.5 --k 1e4 --db store.db --json store.db", 2, {"--json", "is the same file as --db"}, kAll},
+    {"collapse --N 3 --e 0.5 --k 1e4 --db store.db --events store.db", 2, {"--events", "is the same file as --db"}, kAll},
+    {"trace --N 3 --to 1 --output t.csv --events t.csv", 2, {"--events: 't.csv' is the same file as --output"}, kAll},
+    {"merge --into m.db params.json", 2, {"merge source: 'params.json'"}, kAll},
+
+    // --out of reproduce: a folder; --print-sweeps writes nothing.
+    {"reproduce --figure fig1 --db store.db --out params.json", 2, {"--out: 'params.json' is a file, not a folder"}, kAll},
+    {"reproduce --figure fig1 --db store.db --out /proc/x", 2, {"--out: cannot create the folder '/proc/x'"}, kAll},
+    {"reproduce --figure fig5 --db store.db --out figs --print-sweeps", 0, {}, kAll, {"granchain sweep"}},
+
+    // Write errors are exit 4 and say what was kept: a JSON that cannot be written leaves the run
+    // unstored; a device that refuses the bytes (after the run is stored) says that it is stored.
+    {"run --N 2 --T 1 --db store.db --json /proc/out.json", 4, {"--json: cannot write '/proc/out.json'", "nothing was stored or written"},
+     {"store.db"}},
+    {"run --N 2 --T 1 --db store.db --json /dev/full", 4, {"--json: cannot write '/dev/full': No space left on device", "the run is stored"}, {}},
+    {"run --N 2 --T 1 --no-db --json /dev/full", 4, {"--json: cannot write '/dev/full'"}, kAll},
+    {"export --db store.db -o /dev/full", 4, {"--output: cannot write '/dev/full': No space left on device"}, kAll},
+    {"analyze --db store.db --json /dev/full", 4, {"--json: cannot write '/dev/full'"}, kAll},
+    {"theory --N 3 --json /dev/full", 4, {"--json: cannot write '/dev/full'"}, kAll},
+    {"trace --N 3 --to 1 --output /dev/full", 4, {"--output: cannot write '/dev/full'"}, kAll},
+
+    // Bad input that was refused before.
+    {"run --N 0 --db store.db", 2, {"--N", "1 <= N <= 100000"}, kAll},
+    {"run --e 1.5", 2, {"--e", "0 < e <= 1"}, kAll},
+    {"run --bogus 1", 2, {"--bogus"}, kAll},
+    {"run --k 1e4x", 2, {"--k", "not a number"}, kAll},
+};
+// clang-format on
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// Every regular file under `root` (relative path -> bytes); directories as entries with "<dir>".
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string rel = fs::relative(entry.path(), root).string();
+    files[rel] = entry.is_regular_file() ? slurp(entry.path()) : "<" + rel + ">";
+  }
+  return files;
+}
+
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+  return s;
+}
+
+int run_shell(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The files every row finds in its folder.
+void prepare_folder(const fs::path& dir) {
+  fs::create_directories(dir / "adir");
+  const auto write = [&](const std::string& name, const std::string& text) { std::ofstream(dir / name, std::ios::binary) << text; };
+  write("params.json", "{\"N\": 3, \"T\": 1, \"transient\": 0.1}");
+  write("dup.json", "{\"N\": 5, \"N\": 6}");
+  write("dup_spelling.json", "{\"dt_factor\": 100, \"dt-factor\": 200}");
+  write("dup.toml", "N = 5\nN = 6\n");
+  write("bad.json", "{\"N\": 5, \"e\": ");
+  write("big.toml", "N = 3\n" + std::string(std::size_t{1} << 20, '#') + "\n");
+  // A results store holding one run.
+  const int code = run_shell("cd '" + dir.string() + "' && '" GRANCHAIN_BINARY "' run --N 2 --T 1 --transient 0 --quiet --db store.db");
+  ASSERT_EQ(code, 0) << "could not make the store";
+  ASSERT_TRUE(fs::exists(dir / "store.db"));
+}
+
+}  // namespace
+
+TEST(BadInput, EveryRowOfTheTable) {
+  TempDir tmp;
+  const fs::path prepared = tmp.path / "prepared";
+  prepare_folder(prepared);
+  if (HasFatalFailure()) return;
+  for (std::size_t i = 0; i < kRows.size(); ++i) {
+    const BadInputRow& row = kRows[i];
+    const fs::path dir = tmp.path / ("row" + std::to_string(i));
+    fs::copy(prepared, dir, fs::copy_options::recursive);
+    const auto before = snapshot(dir);
+    const std::string args = replace_all(row.args, "{dir}", dir.string());
+    // At most 60 s and 4 GiB of address space, so that a regression (a file read without end)
+    // fails this test instead of the machine.
+    const int code = run_shell("cd '" + dir.string() + "' && ulimit -v 4194304 && timeout 60 '" GRANCHAIN_BINARY "' " + args +
+                               " > '" + (tmp.path / "stdout.txt").string() + "' 2> '" + (tmp.path / "stderr.txt").string() + "'");
+    const std::string out = slurp(tmp.path / "stdout.txt");
+    const std::string err = slurp(tmp.path / "stderr.txt");
+    SCOPED_TRACE("row " + std::to_string(i) + ": granchain " + args + "\nstderr: " + err);
+    EXPECT_EQ(code, row.exit_code);
+    for (const auto& w : row.stderr_words) EXPECT_TRUE(err.find(w) != std::string::npos) << "stderr lacks: " << w;
+    for (const auto& w : row.stdout_words) EXPECT_TRUE(out.find(w) != std::string::npos) << "stdout lacks: " << w;
+    if (row.exit_code == 2) {
+      EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+      EXPECT_EQ(err.rfind("granchain: error: ", 0), 0u);
+      EXPECT_TRUE(out.empty()) << out;
+    }
+    const auto after = snapshot(dir);
+    for (const auto& name : row.unchanged) {
+      if (name == "*") {
+        for (const auto& [file, bytes] : before) {
+          const auto it = after.find(file);
+          EXPECT_TRUE(it != after.end() && it->second == bytes) << file << " was changed or removed";
+        }
+        for (const auto& [file, bytes] : after) EXPECT_TRUE(before.count(file)) << file << " was written";
+      } else {
+        ASSERT_TRUE(before.count(name)) << name << " is not a prepared file";
+        const auto it = after.find(name);
+        EXPECT_TRUE(it != after.end() && it->second == before.at(name)) << name << " was changed or removed";
+      }
+    }
+    fs::remove_all(dir);
+  }
+}
