@@ -1,15 +1,32 @@
 #pragma once
 // A test fixture that runs the granchain binary in a fresh folder and captures what it prints.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cstdint>
 #include <string>
 
 namespace fs = std::filesystem;
+
+// The first column of the first row of an SQL query on a results store (0 if it fails).
+inline std::int64_t query(const fs::path& db_path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  std::int64_t n = 0;
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 5000);
+    sqlite3_stmt* st = nullptr;
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
+      n = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return n;
+}
 
 struct CliResult {
   int exit_code;

@@ -14,19 +14,7 @@
 
 namespace {
 
-std::int64_t count_runs(const fs::path& db_path) {
-  sqlite3* db = nullptr;
-  std::int64_t n = -1;
-  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
-    sqlite3_busy_timeout(db, 5000);
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(db, "SELECT count(*) FROM runs", -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
-      n = sqlite3_column_int64(st, 0);
-    sqlite3_finalize(st);
-  }
-  sqlite3_close(db);
-  return n;
-}
+std::int64_t count_runs(const fs::path& db_path) { return query(db_path, "SELECT count(*) FROM runs"); }
 
 class OutputsAndStores : public Cli {
  protected:

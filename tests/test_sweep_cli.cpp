@@ -53,20 +53,6 @@ std::vector<std::string> profile_rows(const std::string& csv) {
   return rows;
 }
 
-std::int64_t query(const fs::path& db_path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  std::int64_t n = 0;
-  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
-    sqlite3_busy_timeout(db, 5000);
-    sqlite3_stmt* st = nullptr;
-    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
-      n = sqlite3_column_int64(st, 0);
-    sqlite3_finalize(st);
-  }
-  sqlite3_close(db);
-  return n;
-}
-
 class SweepCli : public Cli {
  protected:
   // Starts granchain in the test folder without waiting; returns its process id.
