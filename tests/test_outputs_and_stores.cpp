@@ -164,3 +164,49 @@ TEST_F(OutputsAndStores, StandardOutputThatCannotBeWrittenIsExitFour) {
   ASSERT_EQ(stat("/dev/full", &st), 0);
   EXPECT_TRUE(S_ISCHR(st.st_mode)) << "/dev/full was replaced";
 }
+
+// A new store that cannot be set up on a full file system (a 16 KiB tmpfs) is exit 4 and leaves no
+// empty file behind. Mounting needs root: elsewhere the test is skipped.
+TEST_F(OutputsAndStores, ANewStoreOnAFullDiskLeavesNoFile) {
+  fs::create_directories(dir_ / "small");
+  if (std::system(("mount -t tmpfs -o size=16k tmpfs '" + (dir_ / "small").string() + "' 2> /dev/null").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  const CliResult r = run("run --N 3 --T 5 --db small/new.db -q");
+  const bool left = fs::exists(dir_ / "small/new.db");
+  std::system(("umount '" + (dir_ / "small").string() + "'").c_str());
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("disk is full; nothing was stored or written"), std::string::npos) << r.err;
+  EXPECT_FALSE(left);
+}
+
+// The plot scripts die with granchain: a reproduction killed with kill -9 while it draws leaves no
+// python3 drawing behind it.
+TEST_F(OutputsAndStores, PlotScriptsDieWithGranchain) {
+  const pid_t pid = start("reproduce --figure fig1 --preset smoke --db r.db --out figs -q", "log.txt");
+  const std::string children = "/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) + "/children";
+  pid_t child = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (child == 0 && std::chrono::steady_clock::now() < deadline) {  // a child that runs python3
+    std::ifstream f(children);
+    if (!(f >> child) || slurp("/proc/" + std::to_string(child) + "/cmdline").find("python3") == std::string::npos) child = 0;
+    if (child == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_NE(child, 0) << "no plot script was started: " << slurp(dir_ / "log.txt");
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  EXPECT_EQ(wait_exit(pid), -SIGKILL);
+  // The script had only just started (importing matplotlib alone takes longer than this): gone
+  // within 0.2 s means it was killed, not that it finished.
+  // Gone: no such process, or a zombie (dead, waiting to be reaped by whoever adopted it).
+  auto dead = [&] {
+    std::ifstream stat("/proc/" + std::to_string(child) + "/stat");
+    std::string pid_field, name, state;
+    return !(stat >> pid_field >> name >> state) || state == "Z" || state == "X";
+  };
+  bool gone = false;
+  for (int i = 0; i < 40 && !gone; ++i) {
+    gone = dead();
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(gone) << "python3 (pid " << child << ") outlived granchain";
+  if (!gone) kill(child, SIGKILL);
+}
