@@ -1,18 +1,34 @@
 #!/usr/bin/env bash
-# A Slurm job array that runs one granchain sweep in 16 shards, one store per shard; when all
-# have finished, join them with:   ./build/granchain merge --into fig4.db shards/fig4-*.db
-# Submit from the repository root:  sbatch scripts/slurm-sweep-array.sh
-# A shard that is killed (time limit, node failure) is resumed by resubmitting its task:
-#   sbatch --array=7 scripts/slurm-sweep-array.sh
+# A Slurm job array that runs one granchain sweep in SHARDS shards, one store per shard.
+#
+#   bash scripts/slurm-sweep-array.sh               submit all shards (creates shards/ for the logs)
+#   bash scripts/slurm-sweep-array.sh --array=7     resubmit shard 7 (killed by a time limit, a node
+#                                                   failure): it resumes where it stopped
+#   ./build/granchain merge --into fig4.db shards/fig4-*.db     join the shards when all have finished
+#
+# Run from the repository root. Outside a job the script submits itself with sbatch (extra
+# arguments go to sbatch); inside the job it runs its shard. The number of shards is fixed here,
+# not read from the array, so that a resubmitted single task still runs share i of SHARDS.
 #SBATCH --job-name=granchain-fig4
 #SBATCH --array=1-16
 #SBATCH --cpus-per-task=8
 #SBATCH --time=24:00:00
 #SBATCH --output=shards/fig4-%a.log
 set -euo pipefail
+SHARDS=16
+GRANCHAIN=${GRANCHAIN:-./build/granchain}
+
+if [ -z "${SLURM_JOB_ID:-}" ]; then
+  mkdir -p shards  # Slurm opens the --output log before the job starts: the folder must exist
+  exec sbatch "$@" "$0"
+fi
+
+i=${SLURM_ARRAY_TASK_ID:?not a job array task (SLURM_ARRAY_TASK_ID is unset)}
+if ! [[ "$i" =~ ^[0-9]+$ ]] || [ "$i" -lt 1 ] || [ "$i" -gt "$SHARDS" ]; then
+  echo "slurm-sweep-array: array task $i is outside 1..$SHARDS (submit with --array=1-$SHARDS)" >&2
+  exit 2
+fi
 mkdir -p shards
-n=${SLURM_ARRAY_TASK_COUNT:-16}
-i=${SLURM_ARRAY_TASK_ID:-1}
 # The paper's Fig. 4 grid for N = 25: e from 0.80 to 0.998, six values of k, T = 1e4.
-./build/granchain sweep --N 25 --e 0.80:0.998:0.002 --k 1e5:1e10:x10 --T 1e4 --seed 1 \
-    --shard "$i/$n" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig4-$i.db" --progress -q
+"$GRANCHAIN" sweep --N 25 --e 0.80:0.998:0.002 --k 1e5:1e10:x10 --T 1e4 --seed 1 \
+    --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig4-$i.db" --progress -q
