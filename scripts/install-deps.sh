@@ -5,10 +5,11 @@ set -euo pipefail
 
 packages=(
   g++ cmake make pkg-config git ca-certificates
-  libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3 libfftw3-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libsqlite3-dev sqlite3 libfftw3-dev libtomlplusplus-dev libeigen3-dev
   libgtest-dev libgmock-dev
   libopenmpi-dev openmpi-bin
-  python3-numpy python3-scipy python3-matplotlib
+  python3-numpy python3-scipy python3-matplotlib help2man
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

@@ -65,7 +65,10 @@ const std::vector<BadInputRow> kRows = {
     {"run --config dup.json --T 1", 2, {"--config", "'dup.json'", "'N' is set twice"}, kAll},
     {"run --config dup_spelling.json --T 1", 2, {"--config", "'dt-factor' is set twice"}, kAll},
     {"sweep --sweep dup.json --dry-run", 2, {"--sweep", "'N' is set twice"}, kAll},
-    {"run --config dup.toml --T 1", 2, {"--config", "'N' is set twice"}, kAll},
+    {"run --config dup.toml --T 1", 2, {"--config", "'dup.toml' line 2", "redefine", "'N'"}, kAll},
+    {"run --config table.toml --T 1", 2, {"--config", "'table.toml' line 1", "tables/sections are not supported"}, kAll},
+    {"run --config date.toml --T 1", 2, {"--config", "'date.toml' line 2", "must be a number, a string or a list"}, kAll},
+    {"run --config numbers.toml --no-db", 0, {}, kAll, {"k = 1e+06", "N = 3"}},
     {"run --config bad.json --T 1", 2, {"--config", "not valid JSON"}, kAll},
     {"run --config params.json --no-db", 0, {}, {"params.json", "store.db"}, {"N = 3"}},
 
@@ -170,6 +173,9 @@ void prepare_folder(const fs::path& dir) {
   write("dup.json", "{\"N\": 5, \"N\": 6}");
   write("dup_spelling.json", "{\"dt_factor\": 100, \"dt-factor\": 200}");
   write("dup.toml", "N = 5\nN = 6\n");
+  write("table.toml", "[run]\nN = 3\n");
+  write("date.toml", "N = 3\nstart = 1979-05-27\n");
+  write("numbers.toml", "N = 3\nk = 1_000_000  # every TOML number\nT = 1.0\ntransient = 1e-1\n");
   write("bad.json", "{\"N\": 5, \"e\": ");
   write("big.toml", "N = 3\n" + std::string(std::size_t{1} << 20, '#') + "\n");
   // A results store holding one run.

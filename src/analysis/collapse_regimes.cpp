@@ -1,5 +1,6 @@
 #include "analysis/collapse_regimes.hpp"
 
+#include <Eigen/Dense>
 #include <map>
 
 #include <algorithm>
@@ -10,34 +11,25 @@ namespace granchain::analysis {
 
 namespace {
 
-// Inverts a small symmetric positive-definite matrix (Gauss-Jordan with partial pivoting).
-std::vector<double> invert(std::vector<double> a, int n) {
-  std::vector<double> inv(static_cast<std::size_t>(n * n), 0.0);
-  for (int i = 0; i < n; ++i) inv[i * n + i] = 1.0;
-  for (int c = 0; c < n; ++c) {
-    int p = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::abs(a[r * n + c]) > std::abs(a[p * n + c])) p = r;
-    if (a[p * n + c] == 0.0) throw std::invalid_argument("fit: the points do not determine the coefficients");
-    for (int k = 0; k < n; ++k) {
-      std::swap(a[c * n + k], a[p * n + k]);
-      std::swap(inv[c * n + k], inv[p * n + k]);
-    }
-    const double d = a[c * n + c];
-    for (int k = 0; k < n; ++k) {
-      a[c * n + k] /= d;
-      inv[c * n + k] /= d;
-    }
-    for (int r = 0; r < n; ++r) {
-      if (r == c) continue;
-      const double f = a[r * n + c];
-      for (int k = 0; k < n; ++k) {
-        a[r * n + k] -= f * a[c * n + k];
-        inv[r * n + k] -= f * inv[c * n + k];
-      }
-    }
-  }
-  return inv;
+// Weighted least squares y ~ X c, weights 1/err^2: the coefficients from a column-pivoting QR
+// of the weighted design matrix (stable for nearly collinear columns such as 1, x, x^2 with x =
+// log10 k), their covariance (X^T W X)^-1, and chi^2. Throws when the points do not determine c.
+struct LeastSquares {
+  Eigen::VectorXd coef;
+  Eigen::MatrixXd covariance;
+  double chi2 = 0;
+};
+LeastSquares weighted_least_squares(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Eigen::VectorXd& err) {
+  const Eigen::VectorXd w_sqrt = err.cwiseInverse();
+  const Eigen::MatrixXd Xw = w_sqrt.asDiagonal() * X;
+  const Eigen::VectorXd yw = w_sqrt.cwiseProduct(y);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Xw);
+  if (qr.rank() < X.cols()) throw std::invalid_argument("fit: the points do not determine the coefficients");
+  LeastSquares out;
+  out.coef = qr.solve(yw);
+  out.covariance = (Xw.transpose() * Xw).ldlt().solve(Eigen::MatrixXd::Identity(X.cols(), X.cols()));
+  out.chi2 = (Xw * out.coef - yw).squaredNorm();
+  return out;
 }
 
 std::vector<DataPoint> transformed(const std::vector<DataPoint>& pts, bool log_y) {
@@ -60,31 +52,25 @@ PolynomialFit fit_polynomial(const std::vector<DataPoint>& pts, int degree) {
   const int n = degree + 1;
   if (degree < 1 || degree > 2) throw std::invalid_argument("fit: degree must be 1 or 2");
   if (static_cast<int>(pts.size()) < n) throw std::invalid_argument("fit: too few points for the degree");
-  std::vector<double> A(static_cast<std::size_t>(n * n), 0.0), rhs(static_cast<std::size_t>(n), 0.0);
-  for (const auto& p : pts) {
+  const auto m = static_cast<Eigen::Index>(pts.size());
+  Eigen::MatrixXd X(m, n);
+  Eigen::VectorXd y(m), err(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const DataPoint& p = pts[static_cast<std::size_t>(r)];
     if (!(p.error > 0)) throw std::invalid_argument("fit: every point needs a positive error");
-    const double w = 1.0 / (p.error * p.error);
     double xi = 1.0;
-    for (int i = 0; i < n; ++i, xi *= p.x) {
-      rhs[i] += w * xi * p.y;
-      double xj = 1.0;
-      for (int j = 0; j < n; ++j, xj *= p.x) A[i * n + j] += w * xi * xj;
-    }
+    for (int i = 0; i < n; ++i, xi *= p.x) X(r, i) = xi;
+    y(r) = p.y;
+    err(r) = p.error;
   }
-  const std::vector<double> cov = invert(A, n);
+  const LeastSquares ls = weighted_least_squares(X, y, err);
   PolynomialFit f;
-  f.coef.assign(n, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) f.coef[i] += cov[i * n + j] * rhs[j];
-  for (const auto& p : pts) {
-    double model = 0.0, xi = 1.0;
-    for (int i = 0; i < n; ++i, xi *= p.x) model += f.coef[i] * xi;
-    f.chi2 += (p.y - model) * (p.y - model) / (p.error * p.error);
-  }
+  f.coef.assign(ls.coef.data(), ls.coef.data() + n);
+  f.chi2 = ls.chi2;
   f.dof = static_cast<int>(pts.size()) - n;
   const double scale = f.dof > 0 ? std::max(1.0, f.chi2 / f.dof) : 1.0;
-  for (int i = 0; i < n; ++i) f.error.push_back(std::sqrt(cov[i * n + i] * scale));
-  f.covariance01 = cov[1] * scale;
+  for (int i = 0; i < n; ++i) f.error.push_back(std::sqrt(ls.covariance(i, i) * scale));
+  f.covariance01 = ls.covariance(0, 1) * scale;
   return f;
 }
 
@@ -182,7 +168,6 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
 }
 
 InverseNFit fit_inverse_n(const std::vector<double>& N, const std::vector<CriticalValue>& e_c) {
-  double sxx = 0, sxy = 0;
   std::vector<DataPoint> pts;
   for (std::size_t i = 0; i < N.size(); ++i) {
     if (!e_c.at(i).found) continue;
@@ -190,17 +175,22 @@ InverseNFit fit_inverse_n(const std::vector<double>& N, const std::vector<Critic
     pts.push_back({1.0 / N[i], 1.0 - e_c[i].value, sigma});
   }
   if (pts.empty()) throw std::invalid_argument("fit_inverse_n: no critical value was found");
-  for (const auto& p : pts) {
-    const double w = 1.0 / (p.error * p.error);
-    sxx += w * p.x * p.x;
-    sxy += w * p.x * p.y;
+  // 1 - e_c = A / N: a line through the origin in x = 1/N.
+  const auto m = static_cast<Eigen::Index>(pts.size());
+  Eigen::MatrixXd X(m, 1);
+  Eigen::VectorXd y(m), err(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    X(r, 0) = pts[static_cast<std::size_t>(r)].x;
+    y(r) = pts[static_cast<std::size_t>(r)].y;
+    err(r) = pts[static_cast<std::size_t>(r)].error;
   }
+  const LeastSquares ls = weighted_least_squares(X, y, err);
   InverseNFit f;
-  f.A = sxy / sxx;
-  for (const auto& p : pts) f.chi2 += (p.y - f.A * p.x) * (p.y - f.A * p.x) / (p.error * p.error);
+  f.A = ls.coef(0);
+  f.chi2 = ls.chi2;
   f.dof = static_cast<int>(pts.size()) - 1;
   const double scale = f.dof > 0 ? std::max(1.0, f.chi2 / f.dof) : 1.0;
-  f.A_error = std::sqrt(scale / sxx);
+  f.A_error = std::sqrt(ls.covariance(0, 0) * scale);
   return f;
 }
 

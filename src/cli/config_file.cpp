@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <toml++/toml.h>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -27,13 +28,6 @@ namespace {
 
 // Parameter files are a few hundred bytes; anything beyond this is not one.
 constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
 
 std::map<std::string, std::string> parse_json(const std::string& path, const std::string& text, const std::string& option) {
   // nlohmann::json keeps the last of repeated keys; its parse callback sees every key as it is
@@ -88,48 +82,38 @@ std::map<std::string, std::string> parse_json(const std::string& path, const std
   return out;
 }
 
+// TOML by toml++ (every valid TOML number: 1_000_000, 1e6, 0x10, inf), flat: parameters as
+// `key = value`, lists as arrays of numbers or strings. toml++ refuses a key defined twice.
 std::map<std::string, std::string> parse_toml(const std::string& path, const std::string& text, const std::string& option) {
+  toml::table table;
+  try {
+    table = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}: '{}' line {}: {}", option, path, e.source().begin.line, e.description()));
+  }
   std::map<std::string, std::string> out;
-  std::istringstream in(text);
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    // Strip a comment that is not inside a quoted string.
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      if (line[i] == '"') quoted = !quoted;
-      if (line[i] == '#' && !quoted) {
-        line.resize(i);
-        break;
-      }
+  auto scalar = [&](const toml::node& n, const std::string& key) -> std::string {
+    if (const auto* i = n.as_integer()) return std::to_string(i->get());
+    if (const auto* f = n.as_floating_point()) return fmt::format("{:.17g}", f->get());
+    if (const auto* s = n.as_string()) return s->get();
+    if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+    throw InputError(fmt::format("{}: '{}' line {}: the value of '{}' must be a number, a string or a list of them", option, path,
+                                 n.source().begin.line, key));
+  };
+  for (const auto& [k, node] : table) {
+    const std::string key(k.str());
+    if (node.is_table())
+      throw InputError(fmt::format("{}: '{}' line {}: tables/sections are not supported; use flat 'key = value'", option, path,
+                                   node.source().begin.line));
+    std::string value;
+    if (const auto* array = node.as_array()) {  // a sweep's list
+      for (const auto& item : *array) value += (value.empty() ? "" : ",") + scalar(item, key);
+    } else {
+      value = scalar(node, key);
     }
-    line = trim(line);
-    if (line.empty()) continue;
-    if (line.front() == '[')
-      throw InputError(fmt::format("{}: '{}' line {}: tables/sections are not supported; use flat 'key = value'", option, path, number));
-    const auto eq = line.find('=');
-    if (eq == std::string::npos)
-      throw InputError(fmt::format("{}: '{}' line {}: expected 'key = value'", option, path, number));
-    std::string key = trim(line.substr(0, eq));
-    std::string value = trim(line.substr(eq + 1));
-    if (key.empty() || value.empty())
-      throw InputError(fmt::format("{}: '{}' line {}: expected 'key = value'", option, path, number));
-    if (value.front() == '"') {
-      if (value.size() < 2 || value.back() != '"')
-        throw InputError(fmt::format("{}: '{}' line {}: unterminated string", option, path, number));
-      value = value.substr(1, value.size() - 2);
-    } else if (value.front() == '[') {  // an array of numbers or strings: a sweep's list
-      if (value.back() != ']')
-        throw InputError(fmt::format("{}: '{}' line {}: unterminated array", option, path, number));
-      std::string items;
-      for (char c : value.substr(1, value.size() - 2))
-        if (c != '"' && c != ' ' && c != '\t') items += c;
-      value = items;
-    }
-    key = normalize_key(key);
-    if (out.count(key)) throw InputError(fmt::format("{}: '{}' line {}: '{}' is set twice", option, path, number, key));
-    out[key] = value;
+    // "dt_factor" and "dt-factor" name one parameter.
+    if (!out.emplace(normalize_key(key), value).second)
+      throw InputError(fmt::format("{}: '{}' line {}: '{}' is set twice", option, path, node.source().begin.line, normalize_key(key)));
   }
   return out;
 }

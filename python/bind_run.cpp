@@ -1,0 +1,203 @@
+// granchain.run: one driven column (simulation/driven_run.hpp) from keyword arguments validated by
+// the CLI's own resolve_run_options, the result as a dict with numpy profiles.
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "bindings.hpp"
+#include "cli/input_error.hpp"
+#include "cli/run_options.hpp"
+#include "store/results_store.hpp"
+#include "store/run_json.hpp"
+#include "version.hpp"
+
+namespace granchain::python {
+
+namespace {
+
+py::dict estimate_halves(const StationarityCheck& c) {
+  py::dict d;
+  d["first"] = c.first.value;
+  d["first_err"] = c.first.error;
+  d["second"] = c.second.value;
+  d["second_err"] = c.second.error;
+  d["z"] = c.z;
+  d["stationary"] = c.stationary;
+  return d;
+}
+
+py::dict spec_dict(const RunSpec& s) {
+  py::dict p;
+  p["setup"] = "driven_column";
+  p["N"] = s.params.N;
+  p["e"] = s.params.e;
+  p["k"] = s.params.k;  // inf for the hard-sphere engine
+  p["T0"] = s.params.kT0;
+  p["m"] = s.params.m;
+  p["d"] = s.params.d;
+  p["g"] = s.params.g;
+  p["T"] = s.T;
+  p["transient"] = s.transient;
+  p["seed"] = s.seed;
+  p["engine"] = s.engine.name;
+  p["dt_factor"] = s.engine.dt_factor;
+  p["sample_interval"] = s.sample_interval;
+  p["bins"] = s.bins;
+  p["tc"] = s.engine.hard.tc;
+  return p;
+}
+
+// One value per particle (i = 1..N, 1 at the bottom).
+template <class Get>
+py::array_t<double> per_particle(const std::vector<ParticleProfile>& profiles, Get get) {
+  py::array_t<double> a(static_cast<py::ssize_t>(profiles.size()));
+  auto w = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < profiles.size(); ++i) w(static_cast<py::ssize_t>(i)) = get(profiles[i]);
+  return a;
+}
+
+// The result: every scalar of `granchain run --json` (non-finite values kept as inf and nan), the
+// profiles as numpy arrays, and the CLI's JSON text itself.
+py::dict result_dict(const RunResult& r, const std::string& json_text, const std::string& db, std::int64_t run_id) {
+  py::dict d;
+  d["parameters"] = spec_dict(r.spec);
+  d["n_coll"] = r.n_coll.value;
+  d["n_coll_err"] = r.n_coll.error;
+  d["n_coll_blocks"] = r.n_coll.blocks;
+  d["n_coll_converged"] = r.n_coll.converged;
+  d["floor_rate"] = r.floor_rate.value;
+  d["floor_rate_err"] = r.floor_rate.error;
+  d["pp_rate"] = r.pp_rate.value;
+  d["pp_rate_err"] = r.pp_rate.error;
+  d["particle_collisions"] = r.particle_collisions;
+  d["floor_hits"] = r.floor_hits;
+  d["stationary"] = r.stationary();
+  py::dict st;
+  st["n_coll"] = estimate_halves(r.n_coll_halves);
+  st["mean_height"] = estimate_halves(r.height_halves);
+  d["stationarity"] = st;
+  py::array_t<std::int64_t> index(static_cast<py::ssize_t>(r.profiles.size()));
+  for (py::ssize_t i = 0; i < index.shape(0); ++i) index.mutable_at(i) = i + 1;
+  d["i"] = index;
+  d["z_mean"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.z_mean.value; });
+  d["z_mean_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.z_mean.error; });
+  d["z_std"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.z_std.value; });
+  d["z_std_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.z_std.error; });
+  d["K"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.value; });
+  d["K_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.error; });
+  py::dict derived;
+  derived["D"] = r.law.D;
+  derived["tau_c"] = r.law.tau_c;
+  derived["dt"] = r.time_step;
+  derived["sample_interval"] = r.sample_interval;
+  derived["samples"] = r.samples;
+  d["derived"] = derived;
+  py::dict cost;
+  cost["steps"] = r.steps;
+  cost["events"] = r.events;
+  cost["wall_seconds"] = r.wall_seconds;
+  d["cost"] = cost;
+  if (r.spec.engine.audit) {
+    py::dict audit;
+    audit["instants"] = r.audit_instants;
+    audit["values"] = r.audit_values;
+    d["audit"] = audit;
+  }
+  d["code_version"] = code_version();
+  if (db.empty()) {
+    d["stored"] = py::none();
+  } else {
+    py::dict stored;
+    stored["db"] = db;
+    stored["run_id"] = run_id;
+    d["stored"] = stored;
+  }
+  d["json"] = json_text;
+  return d;
+}
+
+// Called about every half second of wall time from inside the run (without the GIL): takes the
+// GIL, lets Ctrl-C (KeyboardInterrupt) and an exception from the user's callback end the run.
+ProgressCallback progress_callback(const std::optional<py::object>& user) {
+  return [user](const RunProgress& p) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!user) return;
+    py::dict d;
+    d["t"] = p.t;
+    d["t_total"] = p.t_total;
+    d["in_transient"] = p.in_transient;
+    d["steps"] = p.steps;
+    d["events"] = p.events;
+    d["wall_seconds"] = p.wall_seconds;
+    (*user)(d);
+  };
+}
+
+py::dict run(const py::kwargs& kwargs) {
+  auto args = flag_arguments(kwargs);
+  const std::optional<py::object> audit = take(args, "audit");
+  const std::optional<py::object> progress = take(args, "progress");
+  if (progress && !PyCallable_Check(progress->ptr()))
+    throw py::value_error("progress: expected a callable taking one dict (or None)");
+  const std::optional<py::object> db = take(args, "db");
+
+  std::map<std::string, RawValue> raw;
+  for (const auto& [name, value] : args) raw[name] = RawValue{flag_text(value), ""};
+  if (db) raw["db"] = RawValue{path_text(*db, "--db"), ""};
+  RunOptions opts = resolve_run_options(raw);  // InputError -> ValueError, the CLI's message
+  opts.use_db = db.has_value();
+  if (audit && py::bool_(*audit)) {
+    if (opts.spec.engine.name != "exact")
+      throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
+    opts.spec.engine.audit = true;
+  }
+  if (opts.use_db) {
+    try {
+      ResultsStore::preflight(opts.db_path);
+    } catch (const StoreError& e) {
+      throw py::value_error(e.what());  // the CLI's exit 2: bad input, nothing run
+    }
+  }
+
+  const ProgressCallback cb = progress_callback(progress);
+  RunResult result;
+  std::string json_text;
+  std::int64_t run_id = 0;
+  {
+    py::gil_scoped_release nogil;
+    result = run_driven_column(opts.spec, cb, 0.5);
+    nlohmann::json j = run_result_to_json(result);
+    if (opts.use_db) {
+      ResultsStore store(opts.db_path);
+      run_id = store.insert_run(result, [&](std::int64_t id) { j["stored"] = {{"db", opts.db_path}, {"run_id", id}}; });
+    }
+    json_text = j.dump(2);
+  }
+  return result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
+}
+
+}  // namespace
+
+void bind_run(py::module_& m) {
+  m.def("run", &run,
+        "Simulate the driven column once (granchain run). Keyword arguments are the flags of `granchain run` "
+        "(dt_factor for --dt-factor, sample_interval for --sample-interval), numbers or text; db=PATH stores the "
+        "run, audit=True checks the exact engine, progress=callable(dict) is called about every 0.5 s. Bad input "
+        "raises ValueError with the CLI's message.");
+  m.def("run_parameters", [] {
+    py::list out;
+    for (const ParameterInfo& p : run_parameters()) {
+      py::dict d;
+      d["name"] = p.name;
+      d["help"] = p.help;
+      d["type"] = p.type;
+      out.append(d);
+    }
+    return out;
+  }, "The parameters of run(): name (the CLI flag without --), help text with the valid range and default, type.");
+}
+
+}  // namespace granchain::python

@@ -1,0 +1,35 @@
+#pragma once
+// Shared pieces of the extension _granchain: keyword arguments read the way the command line
+// reads its flags, and the functions that add each group of bindings to the module.
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace granchain::python {
+
+namespace py = pybind11;
+
+// A keyword argument as the text a command-line flag would carry: a str as given, an integer in
+// decimal, a float in Python's shortest round-trip form (so "1e6" and 1e6 parse to the same
+// double), anything else as str(value) (which validation then refuses with the CLI's message).
+std::string flag_text(const py::handle& value);
+
+// Keyword arguments by flag name: '_' reads as '-' (dt_factor -> dt-factor); None means "not
+// given" and is dropped.
+std::map<std::string, py::object> flag_arguments(const py::kwargs& kwargs);
+
+// Takes `name` out of `args` (nullopt if absent).
+std::optional<py::object> take(std::map<std::string, py::object>& args, const std::string& name);
+
+// A path argument (str or os.PathLike) as text; ValueError naming `option` otherwise.
+std::string path_text(const py::handle& value, const std::string& option);
+
+// The groups of functions; module.cpp calls each.
+void bind_run(py::module_& m);
+void bind_collapse(py::module_& m);
+void bind_theory(py::module_& m);
+void bind_store(py::module_& m);
+
+}  // namespace granchain::python

@@ -1,0 +1,57 @@
+// Keyword arguments read as command-line text (bindings.hpp).
+#include <fmt/format.h>
+
+#include "bindings.hpp"
+
+namespace granchain::python {
+
+std::string flag_text(const py::handle& value) {
+  PyObject* v = value.ptr();
+  if (PyUnicode_Check(v)) return value.cast<std::string>();
+  if (PyBool_Check(v)) return py::str(value);  // "True": refused by every numeric parameter
+  if (PyIndex_Check(v)) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(v)));
+  if (PyFloat_Check(v) || PyObject_HasAttrString(v, "__float__")) {
+    PyObject* f = PyNumber_Float(v);
+    if (f != nullptr) return py::repr(py::reinterpret_steal<py::object>(f));
+    PyErr_Clear();
+  }
+  return py::str(value);
+}
+
+std::map<std::string, py::object> flag_arguments(const py::kwargs& kwargs) {
+  std::map<std::string, py::object> out;
+  for (const auto& [key, value] : kwargs) {
+    if (value.is_none()) continue;
+    std::string name = py::str(key);
+    for (char& c : name)
+      if (c == '_') c = '-';
+    out[name] = py::reinterpret_borrow<py::object>(value);
+  }
+  return out;
+}
+
+std::optional<py::object> take(std::map<std::string, py::object>& args, const std::string& name) {
+  const auto it = args.find(name);
+  if (it == args.end()) return std::nullopt;
+  py::object v = it->second;
+  args.erase(it);
+  return v;
+}
+
+std::string path_text(const py::handle& value, const std::string& option) {
+  py::object p = py::reinterpret_borrow<py::object>(value);
+  if (!PyUnicode_Check(p.ptr())) {
+    try {
+      p = py::module_::import("os").attr("fspath")(value);
+    } catch (const py::error_already_set&) {
+      throw py::value_error(fmt::format("{}: expected a path (str or os.PathLike), got {}", option,
+                                        std::string(py::str(py::type::of(value).attr("__name__")))));
+    }
+    if (!PyUnicode_Check(p.ptr())) p = p.attr("decode")();
+  }
+  const std::string text = p.cast<std::string>();
+  if (text.empty()) throw py::value_error(fmt::format("{}: the path is empty; give a file name", option));
+  return text;
+}
+
+}  // namespace granchain::python

@@ -1,0 +1,85 @@
+"""granchain.collapse: the CLI's counts, per-launch arrays, the three-body growth with k."""
+
+import csv
+import io
+
+import numpy as np
+import pytest
+
+import granchain
+from conftest import cli_error
+
+
+def test_count_is_the_clis(cli, cli_json, tmp_path):
+    r = granchain.collapse(N=3, e=0.05, k=1e6, realizations=40, seed=3, record_collisions=True)
+    events = tmp_path / "events.csv"
+    j = cli_json("collapse", "--N", 3, "--e", 0.05, "--k", "1e6", "--realizations", 40, "--seed", 3,
+                 "--events", events, "--no-db", "-q")
+    obs = j["points"][0]["observables"]
+    assert r["n_tot"] == obs["n_tot"] and r["n_tot_err"] == obs["n_tot_err"]
+    assert (r["n_tot_min"], r["n_tot_max"], r["collapsed"]) == (obs["n_tot_min"], obs["n_tot_max"], obs["collapsed"])
+    per = r["per_realization"]
+    assert per["n_tot"].shape == (40,) and per["n_tot"].dtype == np.int64
+    assert per["n_tot"].mean() == pytest.approx(r["n_tot"], rel=1e-15)
+    assert int(per["particle_collisions"].sum()) == obs["particle_collisions"]
+    assert np.all(per["t_stop"] > 0) and not per["collapsed"].any()
+    # Every collision, as `--events` writes it (17 significant digits: exact).
+    rows = list(csv.DictReader(io.StringIO(events.read_text())))
+    log = r["collisions_log"]
+    assert len(rows) == len(log["t_begin"]) == per["n_tot"].sum()
+    assert [float(x["t_begin"]) for x in rows] == log["t_begin"].tolist()
+    assert [int(x["realization"]) for x in rows] == log["realization"].tolist()
+    assert [float(x["speed_out"]) for x in rows] == log["speed_out"].tolist()
+
+
+def test_three_body_counts_grow_with_k_below_ec3():
+    # Below e_c(3) = 7 - 4 sqrt 3 three spheres collapse as hard spheres; soft ones count more
+    # collisions the stiffer they are, about -ln10/ln q per decade of k (docs/collapse.md).
+    e = 0.05
+    assert e < granchain.ec_free(3)
+    counts = [granchain.collapse(N=3, e=e, k=k, realizations=100, seed=1) for k in (1e4, 1e6, 1e8)]
+    means = [c["n_tot"] for c in counts]
+    assert means[0] < means[1] < means[2]
+    s = granchain.k_slope(counts[1], counts[2])
+    assert s["launches"] == 100 and s["slope_per_log10_k"] > 10 * s["error"]
+    assert s["theory_all_collisions"] == pytest.approx(-np.log(10) / np.log(granchain.q_ratio(e)))
+    assert 0.5 * s["theory_all_collisions"] < s["slope_per_log10_k"] < 1.1 * s["theory_all_collisions"]
+    # Per launch, no count falls when k grows (the same launches at every k).
+    assert np.all(counts[2]["per_realization"]["n_tot"] >= counts[0]["per_realization"]["n_tot"])
+
+
+def test_three_body_count_converges_above_ec3():
+    a, b = (granchain.collapse(N=3, e=0.5, k=k, realizations=50) for k in (1e6, 1e8))
+    assert np.all(b["per_realization"]["n_tot"] == 2)
+    assert abs(granchain.k_slope(a, b)["slope_per_log10_k"]) < 0.05
+
+
+def test_hard_spheres_collapse_only_below_ec3():
+    below = granchain.collapse(N=3, e=0.05, engine="hard", realizations=40)
+    above = granchain.collapse(N=3, e=0.1, engine="hard", realizations=40)
+    assert below["parameters"]["k"] == above["parameters"]["k"] == np.inf
+    assert below["collapsed"] == below["per_realization"]["collapsed"].sum() > 0
+    assert above["collapsed"] == 0 and not above["per_realization"]["collapsed"].any()
+    # n_tot averages the launches that did not collapse.
+    done = ~below["per_realization"]["collapsed"]
+    assert below["n_tot"] == pytest.approx(below["per_realization"]["n_tot"][done].mean(), rel=1e-15)
+
+
+@pytest.mark.parametrize("kwargs,flags", [
+    (dict(N=1, k=1e6), ["--N=1", "--k=1e6"]),
+    (dict(e=0, k=1e6), ["--e=0", "--k=1e6"]),
+    (dict(engine="hard", k=1e6), ["--engine=hard", "--k=1e6"]),
+    (dict(k=1e6, tc=1e-6), ["--k=1e6", "--tc=1e-6"]),
+    (dict(k=1e6, setup="wall", stop="ends"), ["--k=1e6", "--setup=wall", "--stop=ends"]),
+    (dict(k=1e6, realizations=0), ["--k=1e6", "--realizations=0"]),
+    (dict(k=1e6, dt_factor=1), ["--k=1e6", "--dt-factor=1"]),
+])
+def test_bad_input_raises_value_error_with_the_clis_message(cli, kwargs, flags):
+    with pytest.raises(ValueError) as info:
+        granchain.collapse(**kwargs)
+    assert str(info.value) == cli_error(cli("collapse", *flags, "--no-db"))
+
+
+def test_soft_engines_need_one_k():
+    with pytest.raises(ValueError, match="^--k: give the elastic constant"):
+        granchain.collapse(N=3, e=0.05)

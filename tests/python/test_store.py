@@ -1,0 +1,93 @@
+"""granchain.Store / export: the rows `granchain export` gives, typed, with the same filters."""
+
+import csv
+import io
+import math
+
+import numpy as np
+import pytest
+
+import granchain
+from conftest import cli_error
+
+
+@pytest.fixture(scope="module")
+def store(tmp_path_factory, cli):
+    """A store made by the CLI: three soft runs, a hard-sphere run and a collapse count."""
+    db = tmp_path_factory.mktemp("store") / "s.db"
+    for e in (0.9, 0.8, 0.7):
+        assert cli("run", "--N", 3, "--e", e, "--k", "1e5", "--T", 20, "--db", db, "-q").returncode == 0
+    assert cli("run", "--N", 2, "--engine", "hard", "--T", 20, "--db", db, "-q").returncode == 0
+    assert cli("collapse", "--N", 3, "--e", 0.05, "--k", "1e4", "--realizations", 5, "--db", db, "-q").returncode == 0
+    return db
+
+
+def cli_rows(cli, *args):
+    p = cli("export", *args)
+    assert p.returncode == 0, p.stderr
+    return list(csv.DictReader(io.StringIO(p.stdout)))
+
+
+def same_value(a, text):
+    """A value of the module against the CLI's CSV field."""
+    if text == "":
+        return a is None or a == "" or (isinstance(a, float) and math.isnan(a))
+    if isinstance(a, (float, np.floating)):
+        return float(a) == float(text)  # exact, inf included
+    return str(a) == text
+
+
+@pytest.mark.parametrize("table", ["runs", "profiles", "collapse", "realizations"])
+def test_rows_are_the_clis(cli, store, table):
+    rows = granchain.export(store, table)
+    expected = cli_rows(cli, "--db", store, "--table", table)
+    assert len(rows) == len(expected) > 0
+    assert list(rows.dtype.names) == list(expected[0].keys())
+    for got, want in zip(rows, expected):
+        for name in rows.dtype.names:
+            assert same_value(got[name].item(), want[name]), (table, name, got[name], want[name])
+
+
+def test_columns_are_typed(store):
+    runs = granchain.Store(store).runs()
+    assert runs["N"].dtype == np.int64 and runs["seed"].dtype == np.int64
+    assert runs["T0"].dtype == np.float64 and runs["T"].dtype == np.float64  # reals even when whole
+    assert runs["engine"].tolist() == ["exact"] * 3 + ["hard"]
+    assert runs["k"].tolist() == [1e5, 1e5, 1e5, math.inf]  # hard spheres: k = inf, not NULL
+    assert np.isnan(runs["replica"]).all()  # NULL for runs of `granchain run`
+    d = granchain.export(store, "runs", as_dict=True)
+    assert set(d) == set(runs.dtype.names) and d["n_coll"].tolist() == runs["n_coll"].tolist()
+
+
+@pytest.mark.parametrize("kwargs,flags", [
+    (dict(e=0.9), ["--e", "0.9"]),
+    (dict(e=[0.7, 0.9]), ["--e", "0.7,0.9"]),
+    (dict(e="0.7:0.8:0.1"), ["--e", "0.7:0.8:0.1"]),
+    (dict(engine="hard"), ["--engine", "hard"]),
+    (dict(N=3, where="e < 0.85"), ["--N", "3", "--where", "e < 0.85"]),
+    (dict(k=1e5, T0=1, T=20), ["--k", "1e5", "--T0", "1", "--T", "20"]),
+])
+def test_filters_select_what_the_cli_selects(cli, store, kwargs, flags):
+    ids = granchain.export(store, "runs", **kwargs)["id"].tolist()
+    assert ids == [int(r["id"]) for r in cli_rows(cli, "--db", store, *flags)]
+    assert ids  # every filter here selects something
+
+
+def test_profiles_hold_every_particle(store):
+    prof = granchain.Store(store).profiles(N=3)
+    assert len(prof) == 9 and prof["i"].tolist() == [1, 2, 3] * 3
+    assert np.all(np.diff(prof["z_mean"].reshape(3, 3), axis=1) > 0)  # the column is ordered
+
+
+def test_bad_selections_raise_value_error_with_the_clis_message(cli, store, tmp_path):
+    with pytest.raises(ValueError) as info:
+        granchain.export(store, "collapse", T0=1)
+    assert str(info.value) == cli_error(cli("export", "--db", store, "--table", "collapse", "--T0", "1"))
+    with pytest.raises(ValueError) as info:
+        granchain.export(store, where="no_such_column > 1")
+    assert str(info.value) == cli_error(cli("export", "--db", store, "--where", "no_such_column > 1"))
+    missing = tmp_path / "missing.db"
+    with pytest.raises(ValueError) as info:
+        granchain.Store(missing)
+    assert str(info.value) == cli_error(cli("export", "--db", missing))
+    assert not missing.exists()  # read-only: nothing created
