@@ -6,6 +6,7 @@
 #include "cli/input_error.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"
+#include "provenance.hpp"
 #include "version.hpp"
 
 namespace py = pybind11;
@@ -14,6 +15,9 @@ using namespace granchain;
 PYBIND11_MODULE(_granchain, m) {
   m.doc() = "granchain: inelastic collapse in one-dimensional granular chains (compiled part; use the package granchain)";
   m.attr("__version__") = code_version();
+  m.attr("build_settings") = build_settings();
+  // The provenance of every result the module returns or stores names the Python program.
+  m.def("_set_invocation", &set_invocation_text, py::arg("command_line"));
 
   // The module's attributes keep the two classes alive; the translator needs only their pointers.
   static PyObject* unphysical = py::exception<UnphysicalStateError>(m, "UnphysicalStateError", PyExc_RuntimeError).ptr();

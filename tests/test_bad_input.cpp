@@ -134,6 +134,9 @@ const std::vector<BadInputRow> kRows = {
     {"run --N 0 --db store.db", 2, {"--N", "1 <= N <= 100000"}, kAll},
     {"run --e 1.5", 2, {"--e", "0 < e <= 1"}, kAll},
     {"run --bogus 1", 2, {"--bogus"}, kAll},
+    {"swep --N 3", 2, {"'swep' is not a command; did you mean 'sweep'?"}, kAll},
+    {"run --NN 3", 2, {"--NN is not a flag of run; did you mean --N?"}, kAll},
+    {"sweep --tread 2 --dry-run", 2, {"did you mean --threads?"}, kAll},
     {"run --k 1e4x", 2, {"--k", "not a number"}, kAll},
 };
 // clang-format on

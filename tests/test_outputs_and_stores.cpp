@@ -10,6 +10,8 @@
 #include <chrono>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_fixture.hpp"
 
 namespace {
@@ -209,4 +211,37 @@ TEST_F(OutputsAndStores, PlotScriptsDieWithGranchain) {
   }
   EXPECT_TRUE(gone) << "python3 (pid " << child << ") outlived granchain";
   if (!gone) kill(child, SIGKILL);
+}
+
+// Every JSON output and every stored run records where it came from: the command line, host,
+// threads and ranks, the build's settings (also printed by --version), the code version, units.
+TEST_F(OutputsAndStores, ResultsRecordTheirProvenance) {
+  const CliResult v = run("--version");
+  ASSERT_EQ(v.exit_code, 0);
+  EXPECT_NE(v.out.find("build type "), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("compiler "), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("MPI "), std::string::npos) << v.out;
+  const CliResult r = run("run --N 3 --T 2 --db s.db --json r.json -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir_ / "r.json"));
+  const auto& p = j.at("provenance");
+  EXPECT_NE(p.at("command_line").get<std::string>().find(" run --N 3 --T 2 --db s.db --json r.json -q"), std::string::npos);
+  EXPECT_FALSE(p.at("host").get<std::string>().empty());
+  EXPECT_EQ(p.at("threads"), 1);
+  EXPECT_EQ(p.at("ranks"), 1);
+  EXPECT_NE(v.out.find(p.at("build").get<std::string>()), std::string::npos) << "--version and the JSON disagree";
+  EXPECT_EQ(p.at("code_version"), j.at("code_version"));
+  EXPECT_NE(p.at("units").get<std::string>().find("k_B T0"), std::string::npos);
+  // The stored run holds the same record.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2((dir_ / "s.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT json_extract(result_json, '$.provenance.command_line') FROM runs", -1, &st, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_EQ(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)), p.at("command_line").get<std::string>());
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  // A sweep records its threads.
+  ASSERT_EQ(run("sweep --N 3 --e 0.5,0.6 --T 2 --threads 2 --db s.db -q").exit_code, 0);
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT max(json_extract(result_json, '$.provenance.threads')) FROM runs"), 2);
 }

@@ -10,7 +10,12 @@ functions are the closed forms of src/theory; Store and export() read a results 
 docs/python.md.
 """
 
+import sys as _sys
+
 from . import _granchain
+
+# Every result's provenance records the program that made it (the command line of a script).
+_granchain._set_invocation(" ".join(["/usr/bin/python3"] + [str(a) for a in _sys.argv]) + " (granchain Python module)")
 from ._granchain import (  # noqa: F401  (the public API)
     StoreError,
     UnphysicalStateError,

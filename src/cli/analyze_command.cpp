@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "cli/input_error.hpp"
+#include "provenance.hpp"
 #include "cli/output_file.hpp"
 #include "cli/store_analysis.hpp"
 #include "cli/subcommand.hpp"
@@ -82,7 +83,9 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
     }
   }
   if (json_requested) {
-    const std::string text = a.json.dump(1) + "\n";
+    nlohmann::json j = a.json;
+    j["provenance"] = provenance_json();
+    const std::string text = j.dump(1) + "\n";
     try {
       if (json_stdout) {
         write_standard_output(text);

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli/input_error.hpp"
+#include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
 #include "cli/output_file.hpp"
 #include "cli/value_list.hpp"
@@ -185,6 +186,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   base.realizations = static_cast<int>(o.realizations);
   base.seed = static_cast<std::uint64_t>(o.seed);
   base.threads = o.threads;
+  set_parallelism(o.threads, 1);
 
   // The event file is written to a temporary name and renamed only when everything succeeded; a
   // target that is not a regular file (a device, a FIFO) is written directly.

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,9 +11,36 @@
 #include <vector>
 
 #include "cli/subcommand.hpp"
+#include "cli/suggest.hpp"
 #include "version.hpp"
+#include "provenance.hpp"
 
 namespace {
+
+// For a parse error caused by a mistyped name: "'swep' is not a command; did you mean 'sweep'?" or
+// "--NN is not a flag of run; did you mean --N?", else "".
+std::string suggestion(const CLI::App& app, const CLI::App* sub, int argc, char** argv) {
+  if (!sub) {
+    if (argc < 2 || argv[1][0] == '-') return "";
+    std::vector<std::string> names;
+    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(s->get_name());
+    const std::string near = granchain::nearest_name(argv[1], names);
+    return near.empty() ? "" : fmt::format("'{}' is not a command; did you mean '{}'?", argv[1], near);
+  }
+  std::vector<std::string> flags;
+  for (const CLI::Option* o : sub->get_options())
+    for (const std::string& l : o->get_lnames()) flags.push_back("--" + l);
+  for (int i = 2; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0) continue;
+    arg = arg.substr(0, arg.find('='));
+    if (std::find(flags.begin(), flags.end(), arg) != flags.end()) continue;
+    const std::string near = granchain::nearest_name(arg, flags);
+    return near.empty() ? fmt::format("{} is not a flag of {}", arg, sub->get_name())
+                        : fmt::format("{} is not a flag of {}; did you mean {}?", arg, sub->get_name(), near);
+  }
+  return "";
+}
 
 int standard_output_failed() {
   fmt::print(stderr, "granchain: error: cannot write standard output: {}; what it should have shown is incomplete\n",
@@ -24,7 +52,8 @@ int standard_output_failed() {
 
 int main(int argc, char** argv) {
   CLI::App app{"granchain: inelastic collapse of soft and hard spheres on a vertical line (Wakou et al.)"};
-  app.set_version_flag("--version", granchain::code_version());
+  app.set_version_flag("--version", fmt::format("granchain {}\n{}", granchain::code_version(), granchain::build_settings()));
+  granchain::set_invocation(argc, argv);
   app.require_subcommand(1);
   const std::vector<granchain::Subcommand> commands = {
       granchain::add_run_command(app),   granchain::add_theory_command(app), granchain::add_collapse_command(app),
@@ -47,7 +76,8 @@ int main(int argc, char** argv) {
     std::string msg = e.what();
     std::replace(msg.begin(), msg.end(), '\n', ' ');
     const auto* c = selected();
-    fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", msg, c ? c->app->get_name() + " " : "");
+    const std::string hint = suggestion(app, c ? c->app : nullptr, argc, argv);
+    fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", hint.empty() ? msg : hint, c ? c->app->get_name() + " " : "");
     return granchain::kExitBadInput;
   }
   int rc = 0;

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cli/input_error.hpp"
+#include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
 #include "cli/output_file.hpp"
 #include "cli/reproduce_support.hpp"
@@ -177,6 +178,7 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
   }
   if (o.print_sweeps) return print_sweeps(chosen, o);
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  set_parallelism(o.threads, 1);
   announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
 
   int code = kExitOk;

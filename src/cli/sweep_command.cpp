@@ -15,6 +15,7 @@
 
 #include "cli/config_file.hpp"
 #include "cli/input_error.hpp"
+#include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
 #include "cli/run_options.hpp"
 #include "cli/value_list.hpp"
@@ -177,6 +178,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   }
   if (world.broadcast(kExitOk) != kExitOk) return kExitBadInput;  // (only reached on ranks != 0)
   if (threads == 0) threads = world.size() > 1 ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  set_parallelism(threads, world.size());
 
   // Rank 0 finds what the store holds; the other ranks only compute what rank 0 hands them.
   std::unique_ptr<ResultsStore> store;

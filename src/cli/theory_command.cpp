@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/input_error.hpp"
+#include "provenance.hpp"
 #include "cli/output_file.hpp"
 #include "theory/collapse_theory.hpp"
 
@@ -127,7 +128,8 @@ int execute_theory(const std::shared_ptr<TheoryFlags>& impl_) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
-  const nlohmann::json j = theory_json(impl.N, impl.e);
+  nlohmann::json j = theory_json(impl.N, impl.e);
+  j["provenance"] = provenance_json();
   try {
     if (json_stdout) {
       write_standard_output(j.dump(2) + "\n");

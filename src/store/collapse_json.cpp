@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "version.hpp"
+#include "provenance.hpp"
 
 namespace granchain {
 
@@ -16,6 +17,7 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
     wall += o.wall_hits;
   }
   return {{"code_version", code_version()},
+          {"provenance", provenance_json()},
           {"parameters",
            {{"setup", setup_name(s.setup)},
             {"N", s.params.N},

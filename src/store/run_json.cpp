@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "version.hpp"
+#include "provenance.hpp"
 
 namespace granchain {
 
@@ -44,6 +45,7 @@ json run_result_to_json(const RunResult& r) {
                         {"K_err", p.kinetic.error}});
   }
   json j{{"code_version", code_version()},
+              {"provenance", provenance_json()},
               {"parameters", run_spec_to_json(r.spec)},
               {"derived", {{"D", r.law.D}, {"tau_c", r.law.tau_c}, {"dt", r.time_step},
                            {"sample_interval", r.sample_interval}, {"samples", r.samples}}},
