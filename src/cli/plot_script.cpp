@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <filesystem>
 #include <cstring>
 
 #ifndef GRANCHAIN_PLOTS_DIR
@@ -28,8 +29,20 @@ std::string last_line(const std::string& text) {
 
 }  // namespace
 
+// The folder of the plot scripts: <prefix>/share/granchain/plots beside an installed binary
+// (<prefix>/bin/granchain), else the source tree's plots/ that the build binary was made from.
+std::string plots_dir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "granchain" / "plots";
+    if (std::filesystem::is_directory(installed, ec)) return installed.string();
+  }
+  return GRANCHAIN_PLOTS_DIR;
+}
+
 std::string run_plot_script(const std::string& script, const std::vector<std::string>& args) {
-  const std::string path = std::string(GRANCHAIN_PLOTS_DIR) + "/" + script;
+  const std::string path = plots_dir() + "/" + script;
   std::vector<std::string> argv_s = {"/usr/bin/python3", path};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
   std::vector<char*> argv;

@@ -1,0 +1,26 @@
+# Generates granchain.1 and granchain-<command>.1 from the binary's own --help (help2man), so the
+# pages cannot drift from the program. Called at install time with HELP2MAN, BINARY and OUT.
+file(MAKE_DIRECTORY "${OUT}")
+set(commands run theory collapse sweep merge export analyze trace reproduce)
+set(desc_run "run one driven column and measure its collision rate")
+set(desc_theory "print the paper's closed forms")
+set(desc_collapse "count collisions of free-space or wall collapses")
+set(desc_sweep "run a grid of driven columns into a results store")
+set(desc_merge "merge results stores")
+set(desc_export "export a results store as CSV or JSON")
+set(desc_analyze "analyse stored runs into the paper's regimes")
+set(desc_trace "record and draw a space-time diagram")
+set(desc_reproduce "reproduce the paper's figures and Table 1")
+execute_process(COMMAND ${HELP2MAN} --no-info --name "inelastic collapse in one-dimensional granular chains"
+                        --output "${OUT}/granchain.1" "${BINARY}" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "help2man failed for granchain")
+endif()
+foreach(c IN LISTS commands)
+  execute_process(COMMAND ${HELP2MAN} --no-info --name "${desc_${c}}" --help-option "${c} --help"
+                          --version-option "--version" --output "${OUT}/granchain-${c}.1" "${BINARY}" RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "help2man failed for granchain ${c}")
+  endif()
+endforeach()
+message(STATUS "granchain: man pages in ${OUT}")
