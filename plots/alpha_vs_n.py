@@ -42,10 +42,10 @@ def main(argv):
         if data.get("fit"):
             ax.plot(xx, data["fit"]["slope"] * xx + data["fit"]["intercept"], "k-", lw=0.8,
                     label="fit: %.3f log10 N %+.3f" % (data["fit"]["slope"], data["fit"]["intercept"]))
-    ax.set_xlabel("log10 N")
-    ax.set_ylabel("alpha")
+    ax.set_xlabel(r"$\log_{10} N$")
+    ax.set_ylabel(r"$\alpha$")
     ax.set_title("(a) global fits", fontsize=9)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=8)
     # (b) local exponents per interval of k
     intervals = sorted({(l["k1"], l["k2"]) for f in data["families"] for l in f.get("local_alpha_bar", [])})
     cmap = plt.get_cmap("plasma")
@@ -58,10 +58,10 @@ def main(argv):
                         label="k = %.0e ... %.0e" % (k1, k2))
     if logs:
         bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label="paper: 0.18 log10 N - 0.054")
-    bx.set_xlabel("log10 N")
-    bx.set_ylabel("local alpha, mean over e = 0.1 ... 0.4")
+    bx.set_xlabel(r"$\log_{10} N$")
+    bx.set_ylabel(r"local $\alpha$, mean over $e = 0.1, \ldots, 0.4$")
     bx.set_title("(b) local exponent per interval of k", fontsize=9)
-    bx.legend(fontsize=7)
+    bx.legend(fontsize=8)
     save(fig, argv[2])
     return 0
 

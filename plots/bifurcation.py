@@ -54,9 +54,9 @@ def main(argv):
     ax.plot([], [], "s", color="tab:red", label="1 - e_c2 (bracket)")
     ax.set_xlim(0, xx.max())
     ax.set_ylim(0, None)
-    ax.set_xlabel("1/N")
-    ax.set_ylabel("1 - e")
-    ax.legend(fontsize=7)
+    ax.set_xlabel(r"$1/N$")
+    ax.set_ylabel(r"$1 - e$")
+    ax.legend(fontsize=8)
     ax.set_title("power-law collapse (top), logarithmic, uncollapsing (bottom)", fontsize=9)
     save(fig, argv[2])
     return 0

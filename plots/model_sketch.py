@@ -65,8 +65,8 @@ def main(argv):
     for i in range(z.shape[0]):
         ax.plot(t, z[i], lw=0.6, color="tab:orange" if i == 0 else "k")
     ax.axhline(0, color="k", lw=1.5)
-    ax.set_xlabel("t")
-    ax.set_ylabel("z_i")
+    ax.set_xlabel(r"$t$")
+    ax.set_ylabel(r"$z_i$")
     ax.set_xlim(t[0], t[-1])
     ax.set_title("(c) z_i(t) of the simulated column", fontsize=9)
     save(fig, argv[2])

@@ -32,14 +32,14 @@ def main(argv):
         else:
             axes[1].errorbar(x, np.log10(n), yerr=err / (n * np.log(10)), fmt="o-", ms=3, lw=0.8, capsize=2,
                              label="N = %d, e = %g" % (s["N"], s["e"]))
-    axes[0].set_xlabel("log10 k")
-    axes[0].set_ylabel("n_tot")
+    axes[0].set_xlabel(r"$\log_{10} k$")
+    axes[0].set_ylabel(r"$n_{\rm tot}$")
     axes[0].set_title("(a) N = 3 (dashed: predicted slope)", fontsize=9)
-    axes[1].set_xlabel("log10 k")
-    axes[1].set_ylabel("log10 n_tot")
+    axes[1].set_xlabel(r"$\log_{10} k$")
+    axes[1].set_ylabel(r"$\log_{10} n_{\rm tot}$")
     axes[1].set_title("(b) N = 25", fontsize=9)
     for ax in axes:
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=8)
     save(fig, argv[2])
     return 0
 

@@ -37,5 +37,6 @@ def save_file(fig, path, **kwargs):
 
 def save(fig, prefix):
     fig.tight_layout()
-    save_file(fig, prefix + ".png", dpi=150)
-    save_file(fig, prefix + ".pdf")
+    # bbox "tight": legends placed outside the axes are kept in the file.
+    save_file(fig, prefix + ".png", dpi=150, bbox_inches="tight")
+    save_file(fig, prefix + ".pdf", bbox_inches="tight")

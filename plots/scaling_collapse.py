@@ -45,9 +45,9 @@ def main(argv):
                         label="fit: %.2f X^%.2f" % (fit["prefactor"], fit["slope"]))
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("X = (1 - e) - %.2f/N" % A)
-        ax.set_ylabel("b / N^(5/2)")
-        ax.legend(fontsize=6)
+        ax.set_xlabel(r"$X = (1 - e) - %.2f/N$" % A)
+        ax.set_ylabel(r"$b / N^{5/2}$")
+        ax.legend(fontsize=8)
         ax.set_title("(%s) %s" % ("a" if ax is axes[0] else "b", fit["name"]), fontsize=9)
     ax = axes[2]
     for N in Ns:
@@ -55,9 +55,9 @@ def main(argv):
         ax.errorbar([N * (1 - p["e"]) for p in sel], [p["b"] / N ** 0.5 for p in sel],
                     yerr=[p["b_err"] / N ** 0.5 for p in sel], fmt="o", ms=3, capsize=2, color=colors[N], label="N = %d" % N)
     ax.axhline(0, color="0.6", lw=0.6)
-    ax.set_xlabel("N (1 - e)")
-    ax.set_ylabel("b / N^(1/2)")
-    ax.legend(fontsize=6)
+    ax.set_xlabel(r"$N (1 - e)$")
+    ax.set_ylabel(r"$b / N^{1/2}$")
+    ax.legend(fontsize=8)
     ax.set_title("(c) linear scale", fontsize=9)
     save(fig, argv[2])
     return 0

@@ -21,8 +21,8 @@ def main(argv):
     fig, ax = plt.subplots(figsize=(7, 5))
     for name in names[1:]:
         ax.plot(t, data[name], lw=0.7, color="k")
-    ax.set_xlabel("t")
-    ax.set_ylabel("z_i (height of particle i)")
+    ax.set_xlabel(r"$t$")
+    ax.set_ylabel(r"$z_i$ (height of particle $i$)")
     ax.set_xlim(t[0], t[-1])
     if len(argv) > 3:
         ax.set_title(argv[3], fontsize=9)

@@ -24,8 +24,8 @@ def main(argv):
     ax = axes[0]
     for i, n in enumerate(names[1:]):
         ax.plot(data[names[0]], data[n], lw=1.0, label="particle %d" % (i + 1))
-    ax.set_xlabel("t")
-    ax.set_ylabel("z_i")
+    ax.set_xlabel(r"$t$")
+    ax.set_ylabel(r"$z_i$")
     ax.legend(fontsize=8)
     ax.set_title("(a) three particles collapse: e = 0.065 < e_c(3)", fontsize=9)
     ends = np.atleast_1d(ev)
@@ -38,8 +38,8 @@ def main(argv):
         a = min(2, len(dt) - 1)  # anchored at the third interval: the first two still carry the launch
         ax.semilogy(idx, dt[a] * q ** (idx - 1 - a), "--", label="q^n, q = %.4f (Eq. def_q)" % q)
         ax.axhline(tau_c, color="0.5", lw=0.8, ls=":", label="tau_c")
-    ax.set_xlabel("n (collisions of the pair 1-2)")
-    ax.set_ylabel("interval t12")
+    ax.set_xlabel(r"$n$ (collisions of the pair 1–2)")
+    ax.set_ylabel(r"interval $t_{12}$")
     ax.legend(fontsize=8)
     ax.set_title("(b) geometric intervals", fontsize=9)
     save(fig, argv[3])

@@ -153,6 +153,8 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
         cj["power_fit"] = {{"c", c.c.power_fit.c}, {"c_err", c.c.power_fit.c_error}, {"alpha", c.c.power_fit.alpha},
                            {"alpha_err", c.c.power_fit.alpha_error}, {"chi2", c.c.power_fit.chi2}, {"dof", c.c.power_fit.dof}};
         cj["curvature"] = {{"value", c.c.curvature}, {"error", c.c.curvature_error}};
+        // The local exponent per interval of k beside the global alpha: how the slope drifts.
+        cj["local_exponents"] = local_exponents_json(analysis::local_exponents(c.n_coll_of_k));
       }
       const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
       if (fc != a.condensation.end() && fc->second.count(c.e)) {
