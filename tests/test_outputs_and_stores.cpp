@@ -245,3 +245,13 @@ TEST_F(OutputsAndStores, ResultsRecordTheirProvenance) {
   ASSERT_EQ(run("sweep --N 3 --e 0.5,0.6 --T 2 --threads 2 --db s.db -q").exit_code, 0);
   EXPECT_EQ(query(dir_ / "s.db", "SELECT max(json_extract(result_json, '$.provenance.threads')) FROM runs"), 2);
 }
+
+// `collapse --progress` reports launches done, elapsed time, ETA and collisions/s on standard
+// error (plain lines off a terminal), ending with every launch of every point done.
+TEST_F(OutputsAndStores, CollapseReportsProgress) {
+  const CliResult r = run("collapse --N 10 --e 0.3,0.5 --k 1e6,1e7 --realizations 100 --no-db --progress -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("collapse: 400/400 launches, elapsed "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("collisions/s"), std::string::npos) << r.err;
+}

@@ -1,6 +1,8 @@
 #include "cli/subcommand.hpp"
+#include "cli/sweep_progress.hpp"
 
 #include <fmt/format.h>
+#include <chrono>
 #include <unistd.h>
 
 #include <cmath>
@@ -36,6 +38,7 @@ struct CollapseFlags {
   std::string stop;
   long long realizations = 1000;
   long long seed = 1;
+  bool progress_lines = false;
   int threads = 0;
   double dt_factor = 100.0;
   double tc = 0.0;
@@ -91,6 +94,8 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_->add_option("--db", o.db_path, "results store (SQLite), table collapse_runs; default granchain.db")->type_name("PATH");
   sub_->add_flag("--no-db", o.no_db, "do not store the results");
   sub_->add_flag("--quiet,-q", o.quiet, "print nothing but errors (and JSON to standard output if asked)");
+  sub_->add_flag("--progress", o.progress_lines,
+                 "print progress (launches done, elapsed time, ETA, collisions/s) on standard error even with --quiet or off a terminal");
   sub_->footer(
       "Launch (free space, Sec. III.D): x_i = (i - (N+1)/2)(d + a), v_i = -v0 sgn(x_i) + dv0 xi_i, xi_i uniform\n"
       "in [-1, 1), no gravity. Wall: particle 1 a above the wall, gaps a, v_i = -v0 + dv0 xi_i; the wall\n"
@@ -213,6 +218,36 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   }
   std::vector<CollapseResult> results;
   std::vector<KSlope> slopes;
+  // Progress over all launches of all points: a line rewritten on a terminal (unless --quiet), or
+  // plain lines every 10 s with --progress (a batch job's log).
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const bool show_progress = o.progress_lines || (tty && !o.quiet && !json_stdout);
+  const SweepProgressPrinter printer(tty, "collapse", "launches");
+  const auto t_start = std::chrono::steady_clock::now();
+  auto t_last = t_start;
+  const std::size_t total_launches = es.size() * ks.size() * static_cast<std::size_t>(base.realizations);
+  std::size_t launches_done = 0;
+  std::uint64_t collisions_done = 0;
+  auto report = [&](bool final) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!final && std::chrono::duration<double>(now - t_last).count() < (tty ? 0.5 : 10.0)) return;
+    t_last = now;
+    SweepProgress p;
+    p.done = launches_done;
+    p.total = total_launches;
+    p.elapsed = std::chrono::duration<double>(now - t_start).count();
+    p.eta = launches_done ? p.elapsed / launches_done * (total_launches - launches_done) : std::nan("");
+    p.collisions_per_second = p.elapsed > 0 ? collisions_done / p.elapsed : 0.0;
+    p.final = final;
+    printer(p);
+  };
+  LaunchProgress on_launch;
+  if (show_progress)
+    on_launch = [&](int, std::uint64_t collisions) {
+      ++launches_done;
+      collisions_done += collisions;
+      report(false);
+    };
   try {
     for (double e : es) {
       const std::size_t first = results.size();
@@ -229,8 +264,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
             }
           };
         }
-        results.push_back(run_collapse(spec, log));
+        results.push_back(run_collapse(spec, log, on_launch));
         const CollapseResult& r = results.back();
+        if (show_progress && tty) fmt::print(stderr, "\r{:<100}\r", "");  // the table row replaces the progress line
         if (!o.quiet && !json_stdout) {
           fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8.2f}\n", e, hard ? "inf" : fmt::format("{:g}", k),
                      num(r.n_tot_mean), num(r.n_tot_error), r.n_tot_min, r.n_tot_max,
@@ -243,6 +279,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
       }
       for (std::size_t i = first; i + 1 < results.size(); ++i) slopes.push_back(k_slope(results[i], results[i + 1]));
     }
+    if (show_progress) report(true);
   } catch (const UnphysicalStateError& e) {
     remove_tmp();
     fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written\n", e.what());

@@ -1,6 +1,7 @@
 #pragma once
 // Progress of a sweep on standard error: one line rewritten in place on a terminal, plain lines
-// otherwise (a batch job's log). Shared by `granchain sweep` and `granchain reproduce`.
+// otherwise (a batch job's log). Shared by `granchain sweep`, `reproduce` and `collapse` (whose
+// units are launches rather than points).
 #include <string>
 
 #include "sweep/sweep_runner.hpp"
@@ -12,12 +13,13 @@ std::string format_duration(double seconds);
 
 class SweepProgressPrinter {
  public:
-  SweepProgressPrinter(bool tty, std::string label) : tty_(tty), label_(std::move(label)) {}
+  SweepProgressPrinter(bool tty, std::string label, std::string unit = "points")
+      : tty_(tty), label_(std::move(label)), unit_(std::move(unit)) {}
   void operator()(const SweepProgress& p) const;
 
  private:
   bool tty_;
-  std::string label_;
+  std::string label_, unit_;
 };
 
 }  // namespace granchain

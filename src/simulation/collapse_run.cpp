@@ -142,7 +142,7 @@ ChainState collapse_initial_state(const CollapseSpec& spec, int r) {
                                                 : wall_throw_state(spec.params, spec.launch, seed);
 }
 
-CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log) {
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, const LaunchProgress& progress) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int R = spec.realizations;
   CollapseResult res;
@@ -192,11 +192,13 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log) {
       cv.wait(lock, [&] { return failure || finished[flushed]; });
       if (failure) break;
       std::vector<CollisionRecord> records = std::move(pending[flushed]);
+      const std::uint64_t collisions = res.outcomes[flushed].particle_collisions;
       ++flushed;
       cv.notify_all();
-      if (log) {
+      if (log || progress) {
         lock.unlock();
-        log(records);
+        if (log) log(records);
+        if (progress) progress(flushed, collisions);
         lock.lock();
       }
     }

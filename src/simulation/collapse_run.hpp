@@ -82,7 +82,10 @@ struct CollapseResult {
 using CollisionLog = std::function<void(const std::vector<CollisionRecord>&)>;
 
 // Throws UnphysicalStateError (other than a hard-sphere collapse) if a realisation turns unphysical.
-CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {});
+// Progress: called on the calling thread after each launch is handed over (in launch order), with
+// the launches done so far and the particle collisions of the one just done.
+using LaunchProgress = std::function<void(int done, std::uint64_t collisions)>;
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {}, const LaunchProgress& progress = {});
 
 // How n_tot changes between two counts of the same launches at k1 < k2 (same spec otherwise).
 struct KSlope {
