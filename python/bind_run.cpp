@@ -90,7 +90,7 @@ py::dict result_dict(const RunResult& r, const std::string& json_text, const std
   py::dict derived;
   derived["D"] = r.law.D;
   derived["tau_c"] = r.law.tau_c;
-  derived["dt"] = r.time_step;
+  derived["dt"] = r.time_step > 0 ? py::object(py::float_(r.time_step)) : py::object(py::none());  // None: event-driven
   derived["sample_interval"] = r.sample_interval;
   derived["samples"] = r.samples;
   d["derived"] = derived;

@@ -8,6 +8,7 @@
 #include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 #include "store/results_store.hpp"
+#include "store/store_merge.hpp"
 #include "temp_dir.hpp"
 
 using namespace granchain;
@@ -104,4 +105,72 @@ TEST(ResultsStore, PreflightRefusesWhatItCannotUse) {
   sqlite3_close(db);
   EXPECT_THROW(ResultsStore::preflight(other), StoreError);
   EXPECT_THROW(ResultsStore::preflight(dir.path.string()), StoreError);  // a folder
+}
+
+// The store's columns: dt is the reference engine's step and NULL for the event-driven engines;
+// tc is the hard engine's TC time (NULL for the soft engines); bins the blocking bins.
+TEST(ResultsStore, ColumnsHoldStepTcAndBins) {
+  TempDir dir;
+  ResultsStore store((dir.path / "c.db").string());
+  RunSpec s;
+  s.params.N = 3;
+  s.T = 2;
+  s.transient = 0.5;
+  s.bins = 256;
+  store.insert_run(run_driven_column(s));  // exact
+  s.engine.name = "reference";
+  store.insert_run(run_driven_column(s));
+  s.engine.name = "hard";
+  s.engine.hard.tc = 1e-6;
+  store.insert_run(run_driven_column(s));
+  sqlite3* db = store.handle();
+  EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE engine = 'exact' AND dt IS NULL AND tc IS NULL"), 1.0);
+  EXPECT_GT(query_double(db, "SELECT dt FROM runs WHERE engine = 'reference'"), 0.0);
+  EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE engine = 'hard' AND dt IS NULL"), 1.0);
+  EXPECT_EQ(query_double(db, "SELECT tc FROM runs WHERE engine = 'hard'"), 1e-6);
+  EXPECT_EQ(query_double(db, "SELECT min(bins) FROM runs"), 256.0);
+  EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), 2.0);
+}
+
+// A store of schema version 1 (tests/data/store_version_1.db: exact, hard with tc = 1e-6 and
+// reference runs, dt = 0 for the first two, no tc or bins columns) is read as it is, and upgraded
+// in place when opened for writing: the same runs and profiles, dt NULL for the event-driven
+// engines, tc and bins from each run's JSON, foreign keys intact.
+TEST(ResultsStore, VersionOneStoreIsUpgradedWhenOpenedForWriting) {
+  TempDir dir;
+  const std::string path = (dir.path / "v1.db").string();
+  fs::copy_file(fs::path(GRANCHAIN_SOURCE_DIR) / "tests/data/store_version_1.db", path);
+  ResultsStore::preflight(path, ResultsStore::Access::ReadOnly);
+  ResultsStore::preflight(path);
+  {
+    ResultsStore store(path);
+    sqlite3* db = store.handle();
+    EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), 2.0);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs"), 3.0);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM profiles"), 9.0);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE engine IN ('exact', 'hard') AND dt IS NULL"), 2.0);
+    EXPECT_GT(query_double(db, "SELECT dt FROM runs WHERE engine = 'reference'"), 0.0);
+    EXPECT_EQ(query_double(db, "SELECT tc FROM runs WHERE engine = 'hard'"), 1e-6);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE tc IS NOT NULL"), 1.0);
+    EXPECT_EQ(query_double(db, "SELECT min(bins) FROM runs"), 1024.0);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM pragma_foreign_key_check"), 0.0);
+    // Deleting a run still removes its profiles: the reference follows the rebuilt table.
+    EXPECT_EQ(sqlite3_exec(db, "PRAGMA foreign_keys = ON; DELETE FROM runs WHERE engine = 'reference'", nullptr, nullptr, nullptr), SQLITE_OK);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM profiles"), 6.0);
+    store.insert_run(small_run());
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs"), 3.0);
+  }
+  ResultsStore again(path);  // a version-2 store opens as it is
+  EXPECT_EQ(query_double(again.handle(), "SELECT count(*) FROM runs"), 3.0);
+  // Merged from a version-1 source (read only, not upgraded), the runs take the version-2 form.
+  const std::string source = (dir.path / "source_v1.db").string();
+  fs::copy_file(fs::path(GRANCHAIN_SOURCE_DIR) / "tests/data/store_version_1.db", source);
+  merge_stores((dir.path / "merged.db").string(), {source});
+  ResultsStore merged((dir.path / "merged.db").string());
+  EXPECT_EQ(query_double(merged.handle(), "SELECT count(*) FROM runs WHERE dt IS NULL AND bins = 1024"), 2.0);
+  EXPECT_EQ(query_double(merged.handle(), "SELECT tc FROM runs WHERE engine = 'hard'"), 1e-6);
+  sqlite3* src = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(source.c_str(), &src, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  EXPECT_EQ(query_double(src, "SELECT value FROM meta WHERE key = 'schema_version'"), 1.0);  // the source untouched
+  sqlite3_close(src);
 }

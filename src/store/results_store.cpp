@@ -19,10 +19,7 @@ namespace granchain {
 
 namespace {
 
-const char* kSchema = R"sql(
-CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
-INSERT OR IGNORE INTO meta(key, value) VALUES('schema_version', '1');
-CREATE TABLE IF NOT EXISTS runs(
+const char* kRunsColumns = R"sql((
   id INTEGER PRIMARY KEY,
   created_utc TEXT NOT NULL,
   code_version TEXT NOT NULL,
@@ -41,7 +38,7 @@ CREATE TABLE IF NOT EXISTS runs(
   dt_factor REAL NOT NULL,
   damping_D REAL NOT NULL,
   tau_c REAL NOT NULL,
-  dt REAL NOT NULL,
+  dt REAL,
   sample_interval REAL NOT NULL,
   samples INTEGER NOT NULL,
   n_coll REAL NOT NULL,
@@ -57,8 +54,15 @@ CREATE TABLE IF NOT EXISTS runs(
   steps INTEGER NOT NULL,
   events INTEGER NOT NULL,
   wall_seconds REAL NOT NULL,
-  result_json TEXT NOT NULL
-);
+  result_json TEXT NOT NULL,
+  tc REAL,
+  bins INTEGER
+))sql";
+
+const char* kSchemaRest = R"sql(
+CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+INSERT OR IGNORE INTO meta(key, value) VALUES('schema_version', '2');
+@RUNS@
 CREATE INDEX IF NOT EXISTS runs_by_point ON runs(setup, N, e, k, T0);
 CREATE TABLE IF NOT EXISTS profiles(
   run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
@@ -114,6 +118,13 @@ CREATE TABLE IF NOT EXISTS collapse_realizations(
   PRIMARY KEY(run_id, realization)
 );
 )sql";
+
+// The whole schema; `CREATE TABLE IF NOT EXISTS runs` with the current columns where @RUNS@ stands.
+std::string schema_sql() {
+  std::string sql = kSchemaRest;
+  sql.replace(sql.find("@RUNS@"), 6, std::string("CREATE TABLE IF NOT EXISTS runs") + kRunsColumns + ";");
+  return sql;
+}
 
 std::string utc_now() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -177,7 +188,9 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
           problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
         } else if (step == SQLITE_ROW) {
           const int v = sqlite3_column_int(st, 0);
-          if (v != kStoreSchemaVersion) problem = fmt::format("has store schema version {}, this build reads {}", v, kStoreSchemaVersion);
+          // Version 1 is read as it is and upgraded when opened for writing.
+          if (v < 1 || v > kStoreSchemaVersion)
+            problem = fmt::format("has store schema version {}, this build reads 1 to {}", v, kStoreSchemaVersion);
         }
         sqlite3_finalize(st);
       }
@@ -210,11 +223,13 @@ ResultsStore::ResultsStore(const std::string& path) : path_(path) {
     throw StoreError(fmt::format("--db: cannot open '{}': {}", path, msg));
   }
   sqlite3_busy_timeout(db_, 60000);  // concurrent writers (parallel runs) wait instead of failing
-  exec("PRAGMA foreign_keys = ON");
+  exec("PRAGMA foreign_keys = OFF");  // while a version-1 store's runs table is rebuilt
   exec("BEGIN IMMEDIATE");
   try {
-    exec(kSchema);
+    exec(schema_sql().c_str());
+    if (schema_version() == 1) migrate_from_version_1();
     exec("COMMIT");
+    exec("PRAGMA foreign_keys = ON");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     sqlite3_close(db_);
@@ -225,6 +240,37 @@ ResultsStore::ResultsStore(const std::string& path) : path_(path) {
 }
 
 ResultsStore::~ResultsStore() { sqlite3_close(db_); }
+
+int ResultsStore::schema_version() {
+  SqlStatement st(db_, "SELECT value FROM meta WHERE key = 'schema_version'");
+  return st.row() ? std::stoi(st.column_text(0)) : 0;
+}
+
+// Version 1 -> 2, in the caller's transaction: runs gains tc (the hard engine's TC time, NULL for
+// the soft engines) and bins, filled from each run's own JSON, and dt becomes NULL for the
+// event-driven engines (it was 0). SQLite cannot drop a NOT NULL constraint in place, so the
+// table is rebuilt (create, copy, drop, rename) and its index made again; profiles and run_points
+// keep their run ids.
+void ResultsStore::migrate_from_version_1() {
+  // SQLite's order for a rebuild (create new, copy, drop old, rename new), with foreign keys off:
+  // renaming the old table instead would rewrite the profiles' reference to follow it.
+  exec((std::string("CREATE TABLE runs_version_2") + kRunsColumns).c_str());
+  exec(R"sql(INSERT INTO runs_version_2(id, created_utc, code_version, setup, engine, N, e, k, T0, m, d, g, T, transient, seed,
+        dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err, n_coll_blocks, n_coll_converged,
+        floor_rate, floor_rate_err, pp_rate, pp_rate_err, particle_collisions, floor_hits, steps, events, wall_seconds,
+        result_json, tc, bins)
+      SELECT id, created_utc, code_version, setup, engine, N, e, k, T0, m, d, g, T, transient, seed,
+        dt_factor, damping_D, tau_c, CASE WHEN dt > 0 THEN dt END, sample_interval, samples, n_coll, n_coll_err,
+        n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err, particle_collisions, floor_hits,
+        steps, events, wall_seconds, result_json,
+        CASE WHEN engine = 'hard' THEN json_extract(result_json, '$.parameters.tc') END,
+        json_extract(result_json, '$.parameters.bins')
+      FROM runs)sql");
+  exec("DROP TABLE runs");
+  exec("ALTER TABLE runs_version_2 RENAME TO runs");
+  exec("CREATE INDEX runs_by_point ON runs(setup, N, e, k, T0)");
+  exec("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
+}
 
 void ResultsStore::exec(const char* sql) {
   char* err = nullptr;
@@ -299,8 +345,8 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     SqlStatement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
         T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
         n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
-        particle_collisions, floor_hits, steps, events, wall_seconds, result_json)
-        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
+        particle_collisions, floor_hits, steps, events, wall_seconds, result_json, tc, bins)
+        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
     const RunSpec& s = r.spec;
     int c = 1;
     run.bind(c++, utc_now());
@@ -320,7 +366,8 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     run.bind(c++, s.engine.dt_factor);
     run.bind(c++, r.law.D);
     run.bind(c++, r.law.tau_c);
-    run.bind(c++, r.time_step);
+    if (r.time_step > 0) run.bind(c++, r.time_step);
+    else run.bind_null(c++);  // an event-driven engine has no step
     run.bind(c++, r.sample_interval);
     run.bind(c++, static_cast<std::int64_t>(r.samples));
     run.bind(c++, r.n_coll.value);
@@ -337,6 +384,9 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     run.bind(c++, static_cast<std::int64_t>(r.events));
     run.bind(c++, r.wall_seconds);
     run.bind(c++, run_result_to_json(r).dump());
+    if (s.engine.name == "hard") run.bind(c++, s.engine.hard.tc);
+    else run.bind_null(c++);  // the TC time is the hard engine's
+    run.bind(c++, static_cast<std::int64_t>(s.bins));
     run.run();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
 

@@ -21,7 +21,9 @@ class StoreError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline constexpr int kStoreSchemaVersion = 1;
+// Version 2: runs has tc and bins, and dt NULL for event-driven engines. A version-1 store is
+// upgraded when it is opened for writing; readers read both.
+inline constexpr int kStoreSchemaVersion = 2;
 
 // The columns of collapse_runs that define a collapse count, in the table's order; two rows with
 // equal values here hold the same count (ResultsStore::insert_collapse, merge).
@@ -77,6 +79,8 @@ class ResultsStore {
 
  private:
   void exec(const char* sql);
+  int schema_version();
+  void migrate_from_version_1();
   std::int64_t append_run(const RunResult& r);  // inside a transaction
   // Runs write() between BEGIN IMMEDIATE and COMMIT, rolling back if it throws; returns its id.
   template <class Write>

@@ -47,7 +47,7 @@ json run_result_to_json(const RunResult& r) {
   json j{{"code_version", code_version()},
               {"provenance", provenance_json()},
               {"parameters", run_spec_to_json(r.spec)},
-              {"derived", {{"D", r.law.D}, {"tau_c", r.law.tau_c}, {"dt", r.time_step},
+              {"derived", {{"D", r.law.D}, {"tau_c", r.law.tau_c}, {"dt", r.time_step > 0 ? json(r.time_step) : json(nullptr)},
                            {"sample_interval", r.sample_interval}, {"samples", r.samples}}},
               {"observables", {{"n_coll", to_json(r.n_coll)},
                                {"floor_rate", to_json(r.floor_rate)},
@@ -109,7 +109,7 @@ RunResult run_result_from_json(const json& j) {
   const json& d = j.at("derived");
   r.law.D = real_or(d, "D", std::numeric_limits<double>::infinity());
   r.law.tau_c = real_or(d, "tau_c", nan);
-  r.time_step = d.at("dt").get<double>();
+  r.time_step = d.at("dt").is_null() ? 0.0 : d.at("dt").get<double>();  // null: an event-driven engine
   r.sample_interval = d.at("sample_interval").get<double>();
   r.samples = d.at("samples").get<std::int64_t>();
   const json& o = j.at("observables");
