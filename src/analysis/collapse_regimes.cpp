@@ -167,6 +167,36 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
   return cv;
 }
 
+CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width) {
+  CriticalValue cv;
+  cv.method = "zero of the curvature against log10 k: a weighted line through the curvatures around its sign change";
+  std::vector<DataPoint> c;
+  for (const auto& p : curvature_of_e)
+    if (p.error > 0 && std::isfinite(p.y)) c.push_back(p);
+  std::sort(c.begin(), c.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
+  for (std::size_t i = c.size(); i-- > 1;) {
+    if (!(c[i].y <= 0 && c[i - 1].y > 0)) continue;
+    const double mid = 0.5 * (c[i - 1].x + c[i].x);
+    std::vector<DataPoint> near;
+    for (const auto& p : c)
+      if (std::abs(p.x - mid) <= half_width + 0.5 * (c[i].x - c[i - 1].x)) near.push_back({p.x - mid, p.y, p.error});
+    if (near.size() < 3) return cv;
+    const PolynomialFit f = fit_polynomial(near, 1);  // curvature = a + b (e - mid)
+    const double a = f.coef[0], b = f.coef[1];
+    if (!(b < 0)) return cv;
+    const double r = a / b;
+    cv.low = c[i - 1].x;
+    cv.high = c[i].x;
+    cv.value = mid - r;
+    // delta method for -a/b: var = (var a - 2 r cov(a, b) + r^2 var b) / b^2
+    const double var = (f.error[0] * f.error[0] - 2 * r * f.covariance01 + r * r * f.error[1] * f.error[1]) / (b * b);
+    cv.error = std::sqrt(std::max(var, 0.0));
+    cv.found = true;
+    return cv;
+  }
+  return cv;
+}
+
 InverseNFit fit_inverse_n(const std::vector<double>& N, const std::vector<CriticalValue>& e_c) {
   std::vector<DataPoint> pts;
   for (std::size_t i = 0; i < N.size(); ++i) {

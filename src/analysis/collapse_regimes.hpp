@@ -81,6 +81,15 @@ CriticalValue e_c1_from_b(const std::vector<DataPoint>& b_of_e, double window = 
 // Returns the bracket between the largest e classified power-law and the next larger e of the
 // grid, value its midpoint and error half its width. Not found if no e is power-law or none above.
 CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<Regime>& regimes);
+// e_c2 as the paper reads it off its figures: where the curvature of n_coll against log10 k
+// changes sign, convex below, concave above (pass the collapsing curves: x = e, y = curvature).
+// Scanning down from the largest e, the first e with a positive curvature and the e above it
+// bracket the change (low, high); a weighted straight line through the curvatures within
+// half_width of the bracket (at least three points) gives the zero and, from its covariance, the
+// error. Without a sign change, or with a line that does not fall with e: not found. Unlike
+// e_c2_from_regimes this asks for no significance, so it does not move down to where the
+// curvature becomes resolvable.
+CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width = 0.0061);
 
 // (1 - e_c) = A / N through the origin in 1/N, weighted by the errors of e_c (Eq. e-fit).
 struct InverseNFit {

@@ -66,6 +66,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       fam.e_c1_estimate = estimate_e_c1(all_curves, fam.N, k_min);
       fam.e_c1 = fam.e_c1_estimate.e_c1;
       fam.e_c2 = e_c2_from_regimes(es, regimes);
+      std::vector<DataPoint> curvatures;  // of the collapsing curves
+      for (const auto& c : fam.curves)
+        if (c.classified && c.c.regime != Regime::Uncollapsing) curvatures.push_back({c.e, c.c.curvature, c.c.curvature_error});
+      fam.e_c2_sign = e_c2_from_curvature_sign(curvatures);
     }
     {
       std::vector<std::vector<std::pair<double, double>>> groups;

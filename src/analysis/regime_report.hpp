@@ -35,6 +35,7 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
   double kT0 = 1;
   std::vector<CurveAnalysis> curves;  // e ascending
   CriticalValue e_c1, e_c2;  // e_c1: estimate.e_c1 (its error includes the systematic part)
+  CriticalValue e_c2_sign;   // e_c2 where the curvature changes sign (the paper's reading)
   E_c1Estimate e_c1_estimate;
   // Table 1: alpha at e = 0.1, 0.2, 0.3, 0.4 (those measured) and their mean.
   std::vector<DataPoint> alphas;  // x = e

@@ -26,6 +26,8 @@ std::string fig5_table(const StoreAnalysis& a) {
                     x.has_boundary ? fmt::format("{:.4f} – {:.4f}", x.last_collapsing_e, x.first_uncollapsing_e) : "not found");
   md += fmt::format("| e_c2 (convex/concave) | {} | 0.878 – 0.884 |\n",
                     f.e_c2.found ? fmt::format("{:.3f} – {:.3f}", f.e_c2.low, f.e_c2.high) : "not found");
+  md += fmt::format("| e_c2 (curvature changes sign: the paper's reading) | {} | 0.878 – 0.884 |\n",
+                    f.e_c2_sign.found ? plus_minus(f.e_c2_sign.value, f.e_c2_sign.error, 4) : "not found");
   md += fmt::format("| ᾱ (mean α at e = 0.1 … 0.4) | {} | 0.20 |\n", f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error, 3) : "-");
   md += fmt::format("| local α per interval of k, mean over e = 0.1 … 0.4 (ᾱ averages these) | {} | – |\n",
                     local_exponents_text(f.local_alpha_bar));

@@ -184,6 +184,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                              {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
                              {"local_alpha_bar", local_exponents_json(f.local_alpha_bar)},
                              {"e_c2", critical_json(f.e_c2)},
+                             {"e_c2_curvature_sign", critical_json(f.e_c2_sign)},
                              {"replica_check", replica_check_json(f)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
@@ -263,6 +264,9 @@ std::string analysis_text(const StoreAnalysis& a) {
                          x.last_collapsing_e, x.first_uncollapsing_e,
                          isolated.empty() ? "" : "; isolated collapsing e above it (taken as b = 0): " + isolated);
     }
+    if (f.e_c2_sign.found)
+      out += fmt::format("    e_c2 where the curvature changes sign (the paper's reading, no significance asked): {} (between {:g} and {:g})\n",
+                         plus_minus(f.e_c2_sign.value, f.e_c2_sign.error, 4), f.e_c2_sign.low, f.e_c2_sign.high);
     const ReplicaScatter& r = f.replicas;
     if (r.groups > 0)
       out += fmt::format("    blocking errors against independent replicas: {} points with {} runs, chi2/dof = {:.1f}/{} = {:.2f} "
