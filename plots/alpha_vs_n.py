@@ -30,18 +30,18 @@ def main(argv):
                     y.append(a["alpha"])
                     err.append(a["error"])
         if x:
-            ax.errorbar(x, y, yerr=err, fmt=m, ms=4, capsize=2, mfc="none", label="e = %g" % e)
+            ax.errorbar(x, y, yerr=err, fmt=m, ms=4, capsize=2, mfc="none", label="$e = %g$" % e)
     for f in data["families"]:
         logs.append(np.log10(f["N"]))
         if f["alpha_bar"]:
             ax.errorbar(np.log10(f["N"]), f["alpha_bar"]["value"], yerr=f["alpha_bar"]["error"], fmt="D", color="k", ms=4)
-    ax.plot([], [], "D", color="k", label="mean (alpha bar)")
+    ax.plot([], [], "D", color="k", label=r"mean ($\bar\alpha$)")
     if logs:
         xx = np.linspace(min(logs) - 0.05, max(logs) + 0.05, 20)
-        ax.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label="paper: 0.18 log10 N - 0.054")
+        ax.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label=r"paper: $0.18 \log_{10} N - 0.054$")
         if data.get("fit"):
             ax.plot(xx, data["fit"]["slope"] * xx + data["fit"]["intercept"], "k-", lw=0.8,
-                    label="fit: %.3f log10 N %+.3f" % (data["fit"]["slope"], data["fit"]["intercept"]))
+                    label=r"fit: $%.3f \log_{10} N %+.3f$" % (data["fit"]["slope"], data["fit"]["intercept"]))
     ax.set_xlabel(r"$\log_{10} N$")
     ax.set_ylabel(r"$\alpha$")
     ax.set_title("(a) global fits", fontsize=9)
@@ -55,9 +55,9 @@ def main(argv):
         if pts:
             x, y, err = (np.array(v) for v in zip(*pts))
             bx.errorbar(x, y, yerr=err, fmt="o-", ms=3, lw=0.8, capsize=2, color=cmap(i / max(1, len(intervals) - 1)),
-                        label="k = %.0e ... %.0e" % (k1, k2))
+                        label=r"$k = 10^{%d} \ldots 10^{%d}$" % (round(np.log10(k1)), round(np.log10(k2))))
     if logs:
-        bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label="paper: 0.18 log10 N - 0.054")
+        bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label=r"paper: $0.18 \log_{10} N - 0.054$")
     bx.set_xlabel(r"$\log_{10} N$")
     bx.set_ylabel(r"local $\alpha$, mean over $e = 0.1, \ldots, 0.4$")
     bx.set_title("(b) local exponent per interval of k", fontsize=9)

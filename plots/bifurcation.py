@@ -17,7 +17,7 @@ def main(argv):
     if usage(__doc__, argv, 2):
         return 2
     data = load(argv[1])
-    fig, ax = plt.subplots(figsize=(6.5, 5))
+    fig, ax = plt.subplots(figsize=(7, 5))
     fams = sorted(data["families"], key=lambda f: f["N"])
     inv = np.array([1.0 / f["N"] for f in fams])
     for f in fams:
@@ -35,29 +35,29 @@ def main(argv):
             lows.append(1 - max(f["condensed_e"]))
             highs.append(1 - min(f["condensed_e"]))
     if len(xs) >= 2:
-        ax.fill_between(xs, lows, highs, color="0.85", label="partially condensed (K_i dip, hot layer above)")
+        ax.fill_between(xs, lows, highs, color="0.85", label=r"partially condensed ($K_i$ dip, hot layer above)")
     elif xs:
-        ax.vlines(xs, lows, highs, color="0.7", lw=6, label="partially condensed (K_i dip, hot layer above)")
+        ax.vlines(xs, lows, highs, color="0.7", lw=6, label=r"partially condensed ($K_i$ dip, hot layer above)")
     # The paper's own values for N = 25 and 50 (its Table 1, k_B T0 = 1), open symbols.
     for N, ec1, lo2, hi2 in ((25, 0.894, 0.878, 0.884), (50, 0.944, 0.936, 0.942)):
         ax.plot(1.0 / N, 1 - ec1, "o", mfc="none", color="tab:blue", ms=7)
         ax.errorbar(1.0 / N, 1 - 0.5 * (lo2 + hi2), yerr=0.5 * (hi2 - lo2), fmt="s", mfc="none", color="tab:red", ms=7, capsize=3)
-    ax.plot([], [], "o", mfc="none", color="0.3", label="paper, Table 1 (N = 25, 50)")
+    ax.plot([], [], "o", mfc="none", color="0.3", label=r"paper, Table 1 ($N$ = 25, 50)")
     xx = np.linspace(0, inv.max() * 1.1 if len(inv) else 0.06, 50)
-    ax.plot(xx, 2.6 * xx, "k--", lw=0.8, label="paper: 2.6/N")
-    ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label="paper: 3.0/N")
+    ax.plot(xx, 2.6 * xx, "k--", lw=0.8, label=r"paper: $2.6/N$")
+    ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label=r"paper: $3.0/N$")
     if data.get("A1"):
-        ax.plot(xx, data["A1"]["A"] * xx, color="tab:blue", lw=0.8, label="fit e_c1: A = %.2f" % data["A1"]["A"])
+        ax.plot(xx, data["A1"]["A"] * xx, color="tab:blue", lw=0.8, label=r"fit $e_{c1}$: $A$ = %.2f" % data["A1"]["A"])
     if data.get("A2"):
-        ax.plot(xx, data["A2"]["A"] * xx, color="tab:red", lw=0.8, label="fit e_c2: A = %.2f" % data["A2"]["A"])
-    ax.plot([], [], "o", color="tab:blue", label="1 - e_c1")
-    ax.plot([], [], "s", color="tab:red", label="1 - e_c2 (bracket)")
+        ax.plot(xx, data["A2"]["A"] * xx, color="tab:red", lw=0.8, label=r"fit $e_{c2}$: $A$ = %.2f" % data["A2"]["A"])
+    ax.plot([], [], "o", color="tab:blue", label=r"$1 - e_{c1}$")
+    ax.plot([], [], "s", color="tab:red", label=r"$1 - e_{c2}$ (bracket)")
     ax.set_xlim(0, xx.max())
     ax.set_ylim(0, None)
     ax.set_xlabel(r"$1/N$")
     ax.set_ylabel(r"$1 - e$")
-    ax.legend(fontsize=8)
-    ax.set_title("power-law collapse (top), logarithmic, uncollapsing (bottom)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    ax.set_title("power-law collapse (top), logarithmic, uncollapsing (bottom)", fontsize=10)
     save(fig, argv[2])
     return 0
 

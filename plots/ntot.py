@@ -24,14 +24,14 @@ def main(argv):
         n = np.array(s["n_tot"], dtype=float)
         err = np.array(s["error"], dtype=float)
         if s["N"] == 3:
-            line = axes[0].errorbar(x, n, yerr=err, fmt="o", ms=3, capsize=2, label="e = %g" % s["e"])
+            line = axes[0].errorbar(x, n, yerr=err, fmt="o", ms=3, capsize=2, label="$e = %g$" % s["e"])
             if s.get("slope_per_decade") is not None:
                 xx = np.array([x.min(), x.max()])
                 axes[0].plot(xx, n[-1] + s["slope_per_decade"] * (xx - x[-1]), "--", lw=0.8,
                              color=line[0].get_color())
         else:
             axes[1].errorbar(x, np.log10(n), yerr=err / (n * np.log(10)), fmt="o-", ms=3, lw=0.8, capsize=2,
-                             label="N = %d, e = %g" % (s["N"], s["e"]))
+                             label="$N = %d$, $e = %g$" % (s["N"], s["e"]))
     axes[0].set_xlabel(r"$\log_{10} k$")
     axes[0].set_ylabel(r"$n_{\rm tot}$")
     axes[0].set_title("(a) N = 3 (dashed: predicted slope)", fontsize=9)

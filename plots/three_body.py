@@ -34,10 +34,10 @@ def main(argv):
     if len(t12) >= 2:
         dt = np.diff(t12)
         idx = np.arange(1, len(dt) + 1)
-        ax.semilogy(idx, dt, "o", label="measured t12")
+        ax.semilogy(idx, dt, "o", label=r"measured $t_{12}$")
         a = min(2, len(dt) - 1)  # anchored at the third interval: the first two still carry the launch
-        ax.semilogy(idx, dt[a] * q ** (idx - 1 - a), "--", label="q^n, q = %.4f (Eq. def_q)" % q)
-        ax.axhline(tau_c, color="0.5", lw=0.8, ls=":", label="tau_c")
+        ax.semilogy(idx, dt[a] * q ** (idx - 1 - a), "--", label=r"$q^n$, $q$ = %.4f (Eq. def_q)" % q)
+        ax.axhline(tau_c, color="0.5", lw=0.8, ls=":", label=r"$\tau_c$")
     ax.set_xlabel(r"$n$ (collisions of the pair 1–2)")
     ax.set_ylabel(r"interval $t_{12}$")
     ax.legend(fontsize=8)
