@@ -44,7 +44,7 @@ def main(argv):
                     label=r"fit: $%.3f \log_{10} N %+.3f$" % (data["fit"]["slope"], data["fit"]["intercept"]))
     ax.set_xlabel(r"$\log_{10} N$")
     ax.set_ylabel(r"$\alpha$")
-    ax.set_title("(a) global fits", fontsize=9)
+    ax.set_title("(a) global fits", fontsize=10)
     ax.legend(fontsize=8)
     # (b) local exponents per interval of k
     intervals = sorted({(l["k1"], l["k2"]) for f in data["families"] for l in f.get("local_alpha_bar", [])})
@@ -60,7 +60,7 @@ def main(argv):
         bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label=r"paper: $0.18 \log_{10} N - 0.054$")
     bx.set_xlabel(r"$\log_{10} N$")
     bx.set_ylabel(r"local $\alpha$, mean over $e = 0.1, \ldots, 0.4$")
-    bx.set_title("(b) local exponent per interval of k", fontsize=9)
+    bx.set_title(r"(b) local exponent per interval of $k$", fontsize=10)
     bx.legend(fontsize=8)
     save(fig, argv[2])
     return 0

@@ -41,7 +41,7 @@ def main(argv):
     ax.text(6.4, 0.3, "flow", color="tab:blue")
     ax.set_aspect("equal")
     ax.axis("off")
-    ax.set_title("(a) slope flow; motion normal to the slope", fontsize=9)
+    ax.set_title("(a) slope flow; motion normal to the slope", fontsize=10)
 
     # (b) the model: the simulated column at the last sample.
     ax = axes[1]
@@ -58,7 +58,7 @@ def main(argv):
     ax.set_ylim(-1, zs[-1] + 1.5)
     ax.set_aspect("equal")
     ax.axis("off")
-    ax.set_title("(b) the model at t = %g" % t[-1], fontsize=9)
+    ax.set_title("(b) the model at t = %g" % t[-1], fontsize=10)
 
     # (c) the same column's z_i(t).
     ax = axes[2]
@@ -68,7 +68,7 @@ def main(argv):
     ax.set_xlabel(r"$t$")
     ax.set_ylabel(r"$z_i$")
     ax.set_xlim(t[0], t[-1])
-    ax.set_title("(c) z_i(t) of the simulated column", fontsize=9)
+    ax.set_title(r"(c) $z_i(t)$ of the simulated column", fontsize=10)
     save(fig, argv[2])
     return 0
 

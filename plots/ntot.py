@@ -34,10 +34,10 @@ def main(argv):
                              label="$N = %d$, $e = %g$" % (s["N"], s["e"]))
     axes[0].set_xlabel(r"$\log_{10} k$")
     axes[0].set_ylabel(r"$n_{\rm tot}$")
-    axes[0].set_title("(a) N = 3 (dashed: predicted slope)", fontsize=9)
+    axes[0].set_title(r"(a) $N = 3$ (dashed: predicted slope)", fontsize=10)
     axes[1].set_xlabel(r"$\log_{10} k$")
     axes[1].set_ylabel(r"$\log_{10} n_{\rm tot}$")
-    axes[1].set_title("(b) N = 25", fontsize=9)
+    axes[1].set_title(r"(b) $N = 25$", fontsize=10)
     for ax in axes:
         ax.legend(fontsize=8)
     save(fig, argv[2])

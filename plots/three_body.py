@@ -27,7 +27,7 @@ def main(argv):
     ax.set_xlabel(r"$t$")
     ax.set_ylabel(r"$z_i$")
     ax.legend(fontsize=8)
-    ax.set_title("(a) three particles collapse: e = 0.065 < e_c(3)", fontsize=9)
+    ax.set_title(r"(a) three particles collapse: $e = 0.065 < e_c(3)$", fontsize=10)
     ends = np.atleast_1d(ev)
     t12 = np.array([row["t"] for row in ends if row["kind"] == "contact_end" and row["i"] == 1 and row["j"] == 2])
     ax = axes[1]
@@ -41,7 +41,7 @@ def main(argv):
     ax.set_xlabel(r"$n$ (collisions of the pair 1–2)")
     ax.set_ylabel(r"interval $t_{12}$")
     ax.legend(fontsize=8)
-    ax.set_title("(b) geometric intervals", fontsize=9)
+    ax.set_title("(b) geometric intervals", fontsize=10)
     save(fig, argv[3])
     return 0
 
