@@ -138,19 +138,12 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   return q;
 }
 
-template <class T, class Get>
-py::array_t<T> column(const std::vector<RealizationOutcome>& outcomes, Get get) {
-  py::array_t<T> a(static_cast<py::ssize_t>(outcomes.size()));
+// One numpy column: get(item) of every item (launch outcomes, recorded collisions), in order.
+template <class T, class Item, class Get>
+py::array_t<T> column(const std::vector<Item>& items, Get get) {
+  py::array_t<T> a(static_cast<py::ssize_t>(items.size()));
   auto w = a.template mutable_unchecked<1>();
-  for (std::size_t r = 0; r < outcomes.size(); ++r) w(static_cast<py::ssize_t>(r)) = static_cast<T>(get(outcomes[r]));
-  return a;
-}
-
-template <class T, class Get>
-py::array_t<T> record_column(const std::vector<CollisionRecord>& recs, Get get) {
-  py::array_t<T> a(static_cast<py::ssize_t>(recs.size()));
-  auto w = a.template mutable_unchecked<1>();
-  for (std::size_t i = 0; i < recs.size(); ++i) w(static_cast<py::ssize_t>(i)) = static_cast<T>(get(recs[i]));
+  for (std::size_t i = 0; i < items.size(); ++i) w(static_cast<py::ssize_t>(i)) = static_cast<T>(get(items[i]));
   return a;
 }
 
@@ -201,14 +194,14 @@ py::dict collapse_dict(const CollapseResult& r, const std::vector<CollisionRecor
   d["per_realization"] = per;
   if (recorded) {
     py::dict c;  // one entry per collision, as `granchain collapse --events` writes them
-    c["realization"] = record_column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.realization; });
-    c["collision"] = record_column<std::int64_t>(recs, [](const CollisionRecord& x) { return x.index; });
-    c["t_begin"] = record_column<double>(recs, [](const CollisionRecord& x) { return x.t_begin; });
-    c["t_end"] = record_column<double>(recs, [](const CollisionRecord& x) { return x.t_end; });
-    c["i"] = record_column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.i; });
-    c["j"] = record_column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.i + 1; });
-    c["speed_in"] = record_column<double>(recs, [](const CollisionRecord& x) { return x.speed_in; });
-    c["speed_out"] = record_column<double>(recs, [](const CollisionRecord& x) { return x.speed_out; });
+    c["realization"] = column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.realization; });
+    c["collision"] = column<std::int64_t>(recs, [](const CollisionRecord& x) { return x.index; });
+    c["t_begin"] = column<double>(recs, [](const CollisionRecord& x) { return x.t_begin; });
+    c["t_end"] = column<double>(recs, [](const CollisionRecord& x) { return x.t_end; });
+    c["i"] = column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.i; });
+    c["j"] = column<std::int32_t>(recs, [](const CollisionRecord& x) { return x.i + 1; });
+    c["speed_in"] = column<double>(recs, [](const CollisionRecord& x) { return x.speed_in; });
+    c["speed_out"] = column<double>(recs, [](const CollisionRecord& x) { return x.speed_out; });
     d["collisions_log"] = c;
   }
   if (db.empty()) {
