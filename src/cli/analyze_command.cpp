@@ -1,11 +1,11 @@
 #include <fmt/format.h>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "provenance.hpp"
-#include "cli/output_file.hpp"
-#include "cli/store_analysis.hpp"
+#include "store/output_file.hpp"
+#include "reproduce/store_analysis.hpp"
 #include "cli/subcommand.hpp"
-#include "cli/value_list.hpp"
+#include "config/value_list.hpp"
 #include "store/results_store.hpp"
 
 namespace granchain {

@@ -1,5 +1,5 @@
 #include "cli/subcommand.hpp"
-#include "cli/sweep_progress.hpp"
+#include "sweep/sweep_progress.hpp"
 
 #include <fmt/format.h>
 #include <chrono>
@@ -13,11 +13,11 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
-#include "cli/output_file.hpp"
-#include "cli/value_list.hpp"
+#include "store/output_file.hpp"
+#include "config/value_list.hpp"
 #include "engines/engine.hpp"
 #include "simulation/collapse_run.hpp"
 #include "store/collapse_json.hpp"

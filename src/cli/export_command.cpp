@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "cli/input_error.hpp"
-#include "cli/output_file.hpp"
-#include "cli/value_list.hpp"
+#include "config/input_error.hpp"
+#include "store/output_file.hpp"
+#include "config/value_list.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 

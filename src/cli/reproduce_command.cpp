@@ -1,58 +1,54 @@
-// `granchain reproduce`: the paper's figures and Table 1, each from one command, with a Markdown
-// report that sets every measured number beside the paper's. The figures themselves live in
-// reproduce_sketches.cpp (fig1, fig2), reproduce_ncoll.cpp (fig3, fig4, fig5, fig8),
-// reproduce_across_n.cpp (fig6, fig7, fig9, table1) and reproduce_free_space.cpp (fig10).
+// `granchain reproduce`: its flags, their validation, and the call into the reproduction layer
+// (reproduce/reproduction.hpp), which runs, analyses, draws and reports the chosen figures.
 #include <fmt/format.h>
 
-#include <chrono>
+#include <algorithm>
 #include <filesystem>
-#include <set>
 #include <thread>
 
-#include "cli/input_error.hpp"
-#include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
-#include "cli/output_file.hpp"
-#include "cli/reproduce_support.hpp"
 #include "cli/subcommand.hpp"
-#include "cli/value_list.hpp"
-#include "cli/sweep_progress.hpp"
-#include "engines/engine.hpp"
+#include "config/input_error.hpp"
+#include "config/value_list.hpp"
+#include "provenance.hpp"
+#include "reproduce/reproduction.hpp"
+#include "store/output_file.hpp"
 #include "store/results_store.hpp"
 
 namespace granchain {
 
 namespace {
 
-struct FigureEntry {
-  const char* name;   // --figure
-  const char* label;  // the paper's LaTeX label
-  FigureOutcome (*run)(const ReproduceFlags&);
-  std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
-};
-
-const std::vector<FigureEntry>& figures() {
-  static const std::vector<FigureEntry> list = {
-      {"fig1", "1dmodel", reproduce_model_sketch, nullptr},
-      {"fig2", "threebodycollapse", reproduce_three_body, nullptr},
-      {"fig3", "cflogk", reproduce_ncoll_figure, ncoll_grid},
-      {"fig4", "cfe", reproduce_ncoll_figure, ncoll_grid},
-      {"fig5", "cfreqlogN25", reproduce_ncoll_figure, ncoll_grid},
-      {"fig6", "bifurcationdiagram", reproduce_bifurcation, across_n_grid},
-      {"fig7", "logfitbX", reproduce_scaling_collapse, across_n_grid},
-      {"fig8", "partial_cond", reproduce_partial_condensation, partial_condensation_grid},
-      {"fig9", "powerexpo", reproduce_alpha_vs_n, across_n_grid},
-      {"fig10", "ntot", reproduce_free_space_counts, nullptr},
-      {"table1", "table1", reproduce_table1, table1_grid},
-  };
-  return list;
-}
-
-// report.md for Fig. 5 (the main job's), report-<figure>.md for the others, report-all.md for all.
-std::string report_name(const std::string& figure) { return figure == "fig5" ? "report.md" : "report-" + figure + ".md"; }
-
 // threads_text: the --threads value as given, or null when the flag was not given.
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text);
+int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text) {
+  ReproduceFlags o = *impl_;
+  const std::vector<const FigureEntry*> chosen = chosen_figures(o.figure);
+  try {
+    if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all", o.figure, figure_names()));
+    if (o.preset != "quick" && o.preset != "paper" && o.preset != "smoke")
+      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
+    // As sweep validates it; an empty value is given, and refused.
+    if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
+    ResultsStore::preflight(o.db);
+    if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
+      std::error_code ec;
+      if (std::filesystem::exists(o.out, ec) && !std::filesystem::is_directory(o.out, ec))
+        throw InputError(fmt::format("--out: '{}' is a file, not a folder; name a folder for the figures and reports", o.out));
+      std::filesystem::create_directories(o.out, ec);
+      if (ec) throw InputError(fmt::format("--out: cannot create the folder '{}': {}", o.out, ec.message()));
+      for (const FigureEntry* f : chosen) check_output_file(output_path(o, report_name(f->name)), "--out", {{"--db", o.db}});
+      if (o.figure == "all") check_output_file(output_path(o, "report-all.md"), "--out", {{"--db", o.db}});
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  if (o.print_sweeps) return print_sweeps(chosen, o);
+  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  set_parallelism(o.threads, 1);
+  announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
+  return run_figures(chosen, o);
+}
 
 }  // namespace
 
@@ -97,119 +93,5 @@ Subcommand add_reproduce_command(CLI::App& app) {
             return execute_reproduce(impl_, threads_option->count() > 0 ? threads_text.get() : nullptr);
           }};
 }
-
-namespace {
-
-// Runs one figure; on failure prints one line and returns the exit code in the outcome.
-FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
-  o.figure = f.name;
-  try {
-    FigureOutcome out = f.run(o);
-    out.markdown = fmt::format("# {} ({}), preset {}\n\n", f.name, f.label, o.preset) + out.markdown;
-    write_output(output_path(o, report_name(f.name)), out.markdown);
-    return out;
-  } catch (const StoreError& e) {
-    fmt::print(stderr, "granchain: error: {}: {}; repeat the command to resume\n", f.name, e.what());
-    return {kExitStoreFailed, "", ""};
-  } catch (const UnphysicalStateError& e) {
-    fmt::print(stderr, "granchain: error: {}: the simulation became unphysical: {}\n", f.name, e.what());
-    return {kExitUnphysical, "", ""};
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}: {}\n", f.name, e.what());
-    return {kExitStoreFailed, "", ""};
-  }
-}
-
-// The sweeps behind the chosen figures as `granchain sweep` commands, each grid block once.
-int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& flags) {
-  std::set<std::string> seen;
-  std::vector<GridBlock> blocks;
-  ReproduceFlags o = flags;
-  for (const FigureEntry* f : chosen) {
-    if (!f->grid) continue;
-    o.figure = f->name;
-    for (const GridBlock& b : f->grid(o)) {
-      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}{}", b.N, b.e, b.k, b.T, b.T0,
-                                           b.replicas > 1 ? fmt::format(" --replicas {}", b.replicas) : "");
-      if (!seen.insert(line).second) continue;
-      blocks.push_back(b);
-      double seconds = 0.0;
-      const std::vector<SweepPoint> points = grid_points({b});
-      for (const SweepPoint& p : points) seconds += p.cost;
-      fmt::print("# {} points, predicted {:.2g} CPU-hours (sweep/cost_model.hpp)\n{}\n", points.size(), seconds / 3600, line);
-    }
-  }
-  double total = 0.0;
-  const std::vector<SweepPoint> all = blocks.empty() ? std::vector<SweepPoint>{} : grid_points(blocks);
-  for (const SweepPoint& p : all) total += p.cost;
-  fmt::print("# {} distinct points, predicted {:.2g} CPU-hours in all; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
-             "granchain reproduce --figure {} --preset {} --db STORE\n",
-             all.size(), total / 3600, flags.figure, flags.preset);
-  return kExitOk;
-}
-
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text) {
-  ReproduceFlags o = *impl_;
-  std::vector<const FigureEntry*> chosen;
-  std::string valid;
-  for (const FigureEntry& f : figures()) {
-    valid += fmt::format("{}, ", f.name);
-    if (o.figure == f.name || o.figure == "all") chosen.push_back(&f);
-  }
-  try {
-    if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all", o.figure, valid));
-    if (o.preset != "quick" && o.preset != "paper" && o.preset != "smoke")
-      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
-    // As sweep validates it; an empty value is given, and refused.
-    if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
-    ResultsStore::preflight(o.db);
-    if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
-      std::error_code ec;
-      if (std::filesystem::exists(o.out, ec) && !std::filesystem::is_directory(o.out, ec))
-        throw InputError(fmt::format("--out: '{}' is a file, not a folder; name a folder for the figures and reports", o.out));
-      std::filesystem::create_directories(o.out, ec);
-      if (ec) throw InputError(fmt::format("--out: cannot create the folder '{}': {}", o.out, ec.message()));
-      for (const FigureEntry* f : chosen) check_output_file(output_path(o, report_name(f->name)), "--out", {{"--db", o.db}});
-      if (o.figure == "all") check_output_file(output_path(o, "report-all.md"), "--out", {{"--db", o.db}});
-    }
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return kExitBadInput;
-  }
-  if (o.print_sweeps) return print_sweeps(chosen, o);
-  if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  set_parallelism(o.threads, 1);
-  announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
-
-  int code = kExitOk;
-  std::string all = fmt::format("# granchain reproduce --figure all --preset {}\n\n| figure | label | result | wall time |\n|---|---|---|---|\n", o.preset);
-  std::string sections;
-  for (const FigureEntry* f : chosen) {
-    const auto start = std::chrono::steady_clock::now();
-    const FigureOutcome out = run_one(*f, o);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    code = std::max(code, out.exit_code);
-    if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
-    if (!out.markdown.empty()) fmt::print("report: {}\n", output_path(o, report_name(f->name)));
-    all += fmt::format("| {} | {} | {} | {} |\n", f->name, f->label,
-                       out.exit_code == kExitOk ? "done" : out.exit_code == kExitUnphysical ? "done, points failed" : "failed",
-                       format_duration(wall));
-    // One level down: the figure's title becomes a section of the whole report.
-    if (!out.markdown.empty()) sections += "\n#" + out.markdown;
-  }
-  if (o.figure == "all") {
-    try {
-      write_output(output_path(o, "report-all.md"), all + sections);
-      fmt::print("report: {}\n", output_path(o, "report-all.md"));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "granchain: error: {}\n", e.what());
-      code = std::max<int>(code, kExitStoreFailed);
-    }
-  }
-  fmt::print("runs:   {}\n", o.db);
-  return code;
-}
-
-}  // namespace
 
 }  // namespace granchain

@@ -11,11 +11,11 @@
 #include <map>
 #include <memory>
 
-#include "cli/config_file.hpp"
-#include "cli/input_error.hpp"
+#include "config/config_file.hpp"
+#include "config/input_error.hpp"
 #include "cli/interrupt_message.hpp"
-#include "cli/output_file.hpp"
-#include "cli/run_options.hpp"
+#include "store/output_file.hpp"
+#include "config/run_options.hpp"
 #include "cli/run_report.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"

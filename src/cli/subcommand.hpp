@@ -5,15 +5,9 @@
 
 #include <functional>
 
-namespace granchain {
+#include "config/exit_codes.hpp"
 
-// Exit codes of the command line.
-enum ExitCode : int {
-  kExitOk = 0,
-  kExitBadInput = 2,     // bad flag, value, config file or output path; nothing written
-  kExitUnphysical = 3,   // the simulation turned unphysical; no result printed or stored
-  kExitStoreFailed = 4,  // an output (results store, file, standard output) could not be written; the message says what was kept
-};
+namespace granchain {
 
 struct Subcommand {
   CLI::App* app = nullptr;

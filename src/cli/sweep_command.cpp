@@ -1,5 +1,5 @@
 #include "cli/subcommand.hpp"
-#include "cli/sweep_progress.hpp"
+#include "sweep/sweep_progress.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -13,12 +13,12 @@
 #include <tuple>
 #include <utility>
 
-#include "cli/config_file.hpp"
-#include "cli/input_error.hpp"
+#include "config/config_file.hpp"
+#include "config/input_error.hpp"
 #include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
-#include "cli/run_options.hpp"
-#include "cli/value_list.hpp"
+#include "config/run_options.hpp"
+#include "config/value_list.hpp"
 #include "store/results_store.hpp"
 #include "sweep/mpi_sweep.hpp"
 #include "sweep/sweep_grid.hpp"

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "provenance.hpp"
-#include "cli/output_file.hpp"
+#include "store/output_file.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 
-#include "cli/input_error.hpp"
-#include "cli/output_file.hpp"
-#include "cli/plot_script.hpp"
-#include "cli/run_options.hpp"
+#include "config/input_error.hpp"
+#include "store/output_file.hpp"
+#include "reproduce/plot_script.hpp"
+#include "config/run_options.hpp"
 #include "cli/subcommand.hpp"
 #include "engines/engine.hpp"
 #include "simulation/trajectory.hpp"

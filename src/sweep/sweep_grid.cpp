@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "cli/input_error.hpp"
-#include "cli/value_list.hpp"
+#include "config/input_error.hpp"
+#include "config/value_list.hpp"
 #include "engines/engine_factory.hpp"
 #include "model/random.hpp"
 #include "simulation/run_key.hpp"

@@ -8,7 +8,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "cli/run_options.hpp"
+#include "config/run_options.hpp"
 #include "simulation/driven_run.hpp"
 #include "sweep/cost_model.hpp"
 

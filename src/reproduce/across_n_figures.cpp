@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/collapse_regimes.hpp"
-#include "cli/reproduce_support.hpp"
-#include "cli/subcommand.hpp"
+#include "reproduce/figures.hpp"
+#include "config/exit_codes.hpp"
 
 namespace granchain {
 

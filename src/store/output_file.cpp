@@ -1,4 +1,4 @@
-#include "cli/output_file.hpp"
+#include "store/output_file.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "store/results_store.hpp"
 
 namespace granchain {

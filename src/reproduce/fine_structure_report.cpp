@@ -8,7 +8,7 @@
 #include <map>
 
 #include "analysis/fine_structure.hpp"
-#include "cli/reproduce_support.hpp"
+#include "reproduce/figures.hpp"
 #include "store/store_export.hpp"
 #include "theory/collapse_theory.hpp"
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <map>
 
-#include "cli/reproduce_support.hpp"
-#include "cli/subcommand.hpp"
+#include "reproduce/figures.hpp"
+#include "config/exit_codes.hpp"
 #include "model/chain_parameters.hpp"
 #include "simulation/trajectory.hpp"
 #include "theory/collapse_theory.hpp"

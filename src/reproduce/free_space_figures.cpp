@@ -6,9 +6,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "cli/reproduce_support.hpp"
-#include "cli/subcommand.hpp"
-#include "cli/value_list.hpp"
+#include "reproduce/figures.hpp"
+#include "config/exit_codes.hpp"
+#include "config/value_list.hpp"
 #include "simulation/collapse_run.hpp"
 #include "store/results_store.hpp"
 #include "theory/collapse_theory.hpp"

@@ -1,4 +1,4 @@
-#include "cli/plot_script.hpp"
+#include "reproduce/plot_script.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "cli/reproduce_support.hpp"
+#include "reproduce/figures.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -8,9 +8,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "cli/output_file.hpp"
-#include "cli/plot_script.hpp"
-#include "cli/sweep_progress.hpp"
+#include "store/output_file.hpp"
+#include "reproduce/plot_script.hpp"
+#include "sweep/sweep_progress.hpp"
 #include "store/results_store.hpp"
 #include "sweep/sweep_runner.hpp"
 

@@ -1,11 +1,11 @@
-#include "cli/value_list.hpp"
+#include "config/value_list.hpp"
 
 #include <fmt/format.h>
 
 #include <charconv>
 #include <cmath>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 
 namespace granchain {
 

@@ -10,7 +10,7 @@
 
 #include "analysis/condensation.hpp"
 #include "analysis/regime_report.hpp"
-#include "cli/output_file.hpp"
+#include "store/output_file.hpp"
 #include "store/store_export.hpp"
 
 namespace granchain {

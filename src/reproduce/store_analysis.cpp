@@ -1,4 +1,4 @@
-#include "cli/store_analysis.hpp"
+#include "reproduce/store_analysis.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "cli/plot_script.hpp"
+#include "reproduce/plot_script.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 #include "theory/equilibrium_column.hpp"

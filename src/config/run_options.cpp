@@ -1,4 +1,4 @@
-#include "cli/run_options.hpp"
+#include "config/run_options.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <limits>
 #include <numbers>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "engines/engine_factory.hpp"
 
 namespace granchain {

@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/reproduce_support.hpp"
-#include "cli/subcommand.hpp"
+#include "reproduce/figures.hpp"
+#include "config/exit_codes.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {

@@ -1,4 +1,4 @@
-#include "cli/config_file.hpp"
+#include "config/config_file.hpp"
 
 #include <fmt/format.h>
 
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <vector>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 
 namespace granchain {
 

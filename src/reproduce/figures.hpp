@@ -1,12 +1,12 @@
 #pragma once
 // What the figures of `granchain reproduce` share: the flags, the driven-column grids a figure
 // needs (run into the results store, reusing what it holds), the analysis of exactly those points,
-// and the files a figure writes. One reproduce_*.cpp per group of figures implements them.
+// and the files a figure writes. One *_figures.cpp per group of figures implements them.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "cli/store_analysis.hpp"
+#include "reproduce/store_analysis.hpp"
 #include "sweep/sweep_grid.hpp"
 
 namespace granchain {

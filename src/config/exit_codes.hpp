@@ -1,0 +1,13 @@
+#pragma once
+// Exit codes of the command line, shared by the layers that decide them (a figure whose points
+// failed reports kExitUnphysical).
+namespace granchain {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitBadInput = 2,     // bad flag, value, config file or output path; nothing written
+  kExitUnphysical = 3,   // the simulation turned unphysical; no result printed or stored
+  kExitStoreFailed = 4,  // an output (results store, file, standard output) could not be written; the message says what was kept
+};
+
+}  // namespace granchain

@@ -1,0 +1,135 @@
+// The reproduction of the paper's figures: the list of figures, their sweeps as commands, and
+// running a chosen set with its reports. The figures themselves live in sketch_figures.cpp (fig1,
+// fig2), ncoll_figures.cpp (fig3, fig4, fig5, fig8), across_n_figures.cpp (fig6, fig7, fig9,
+// table1) and free_space_figures.cpp (fig10).
+#include "reproduce/reproduction.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+
+#include "config/exit_codes.hpp"
+#include "engines/engine.hpp"
+#include "store/results_store.hpp"
+#include "sweep/sweep_progress.hpp"
+
+namespace granchain {
+
+const std::vector<FigureEntry>& figures() {
+  static const std::vector<FigureEntry> list = {
+      {"fig1", "1dmodel", reproduce_model_sketch, nullptr},
+      {"fig2", "threebodycollapse", reproduce_three_body, nullptr},
+      {"fig3", "cflogk", reproduce_ncoll_figure, ncoll_grid},
+      {"fig4", "cfe", reproduce_ncoll_figure, ncoll_grid},
+      {"fig5", "cfreqlogN25", reproduce_ncoll_figure, ncoll_grid},
+      {"fig6", "bifurcationdiagram", reproduce_bifurcation, across_n_grid},
+      {"fig7", "logfitbX", reproduce_scaling_collapse, across_n_grid},
+      {"fig8", "partial_cond", reproduce_partial_condensation, partial_condensation_grid},
+      {"fig9", "powerexpo", reproduce_alpha_vs_n, across_n_grid},
+      {"fig10", "ntot", reproduce_free_space_counts, nullptr},
+      {"table1", "table1", reproduce_table1, table1_grid},
+  };
+  return list;
+}
+
+std::vector<const FigureEntry*> chosen_figures(const std::string& figure) {
+  std::vector<const FigureEntry*> chosen;
+  for (const FigureEntry& f : figures())
+    if (figure == f.name || figure == "all") chosen.push_back(&f);
+  return chosen;
+}
+
+std::string figure_names() {
+  std::string names;
+  for (const FigureEntry& f : figures()) names += fmt::format("{}, ", f.name);
+  return names;
+}
+
+std::string report_name(const std::string& figure) { return figure == "fig5" ? "report.md" : "report-" + figure + ".md"; }
+
+namespace {
+
+// Runs one figure; on failure prints one line and returns the exit code in the outcome.
+FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
+  o.figure = f.name;
+  try {
+    FigureOutcome out = f.run(o);
+    out.markdown = fmt::format("# {} ({}), preset {}\n\n", f.name, f.label, o.preset) + out.markdown;
+    write_output(output_path(o, report_name(f.name)), out.markdown);
+    return out;
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}: {}; repeat the command to resume\n", f.name, e.what());
+    return {kExitStoreFailed, "", ""};
+  } catch (const UnphysicalStateError& e) {
+    fmt::print(stderr, "granchain: error: {}: the simulation became unphysical: {}\n", f.name, e.what());
+    return {kExitUnphysical, "", ""};
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}: {}\n", f.name, e.what());
+    return {kExitStoreFailed, "", ""};
+  }
+}
+
+}  // namespace
+
+// The sweeps behind the chosen figures as `granchain sweep` commands, each grid block once.
+int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& flags) {
+  std::set<std::string> seen;
+  std::vector<GridBlock> blocks;
+  ReproduceFlags o = flags;
+  for (const FigureEntry* f : chosen) {
+    if (!f->grid) continue;
+    o.figure = f->name;
+    for (const GridBlock& b : f->grid(o)) {
+      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}{}", b.N, b.e, b.k, b.T, b.T0,
+                                           b.replicas > 1 ? fmt::format(" --replicas {}", b.replicas) : "");
+      if (!seen.insert(line).second) continue;
+      blocks.push_back(b);
+      double seconds = 0.0;
+      const std::vector<SweepPoint> points = grid_points({b});
+      for (const SweepPoint& p : points) seconds += p.cost;
+      fmt::print("# {} points, predicted {:.2g} CPU-hours (sweep/cost_model.hpp)\n{}\n", points.size(), seconds / 3600, line);
+    }
+  }
+  double total = 0.0;
+  const std::vector<SweepPoint> all = blocks.empty() ? std::vector<SweepPoint>{} : grid_points(blocks);
+  for (const SweepPoint& p : all) total += p.cost;
+  fmt::print("# {} distinct points, predicted {:.2g} CPU-hours in all; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
+             "granchain reproduce --figure {} --preset {} --db STORE\n",
+             all.size(), total / 3600, flags.figure, flags.preset);
+  return kExitOk;
+}
+
+
+int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+  int code = kExitOk;
+  std::string all = fmt::format("# granchain reproduce --figure all --preset {}\n\n| figure | label | result | wall time |\n|---|---|---|---|\n", o.preset);
+  std::string sections;
+  for (const FigureEntry* f : chosen) {
+    const auto start = std::chrono::steady_clock::now();
+    const FigureOutcome out = run_one(*f, o);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    code = std::max(code, out.exit_code);
+    if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
+    if (!out.markdown.empty()) fmt::print("report: {}\n", output_path(o, report_name(f->name)));
+    all += fmt::format("| {} | {} | {} | {} |\n", f->name, f->label,
+                       out.exit_code == kExitOk ? "done" : out.exit_code == kExitUnphysical ? "done, points failed" : "failed",
+                       format_duration(wall));
+    // One level down: the figure's title becomes a section of the whole report.
+    if (!out.markdown.empty()) sections += "\n#" + out.markdown;
+  }
+  if (o.figure == "all") {
+    try {
+      write_output(output_path(o, "report-all.md"), all + sections);
+      fmt::print("report: {}\n", output_path(o, "report-all.md"));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "granchain: error: {}\n", e.what());
+      code = std::max<int>(code, kExitStoreFailed);
+    }
+  }
+  fmt::print("runs:   {}\n", o.db);
+  return code;
+}
+
+}  // namespace granchain

@@ -1,0 +1,37 @@
+#pragma once
+// The paper's figures and Table 1 as a list, and the reproduction of a chosen set of them: each
+// figure's runs, analysis, drawing and report (reproduce/*_figures.cpp), and the report of all.
+#include <string>
+#include <vector>
+
+#include "reproduce/figures.hpp"
+
+namespace granchain {
+
+struct FigureEntry {
+  const char* name;   // --figure
+  const char* label;  // the paper's LaTeX label
+  FigureOutcome (*run)(const ReproduceFlags&);
+  std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
+};
+
+// fig1 ... fig10 and table1, in the paper's order.
+const std::vector<FigureEntry>& figures();
+// The figures `figure` names ("all": every one); empty when it names none.
+std::vector<const FigureEntry*> chosen_figures(const std::string& figure);
+// "fig1, fig2, ..., table1, " for messages.
+std::string figure_names();
+
+// report.md for Fig. 5 (the main job's), report-<figure>.md for the others, report-all.md for all.
+std::string report_name(const std::string& figure);
+
+// Prints the sweeps behind the chosen figures as `granchain sweep` commands, each grid block once,
+// with their predicted CPU time; returns kExitOk.
+int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o);
+
+// Runs the chosen figures in order (o validated, o.threads resolved): each writes its report into
+// o.out, prints where its figure and report are, and report-all.md joins them for --figure all.
+// Returns the worst exit code (kExitOk, kExitUnphysical when points failed, kExitStoreFailed).
+int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o);
+
+}  // namespace granchain
