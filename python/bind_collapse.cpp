@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "theory/collapse_theory.hpp"

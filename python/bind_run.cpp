@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "cli/input_error.hpp"
-#include "cli/run_options.hpp"
+#include "config/input_error.hpp"
+#include "config/run_options.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
 #include "version.hpp"

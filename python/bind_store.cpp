@@ -4,8 +4,8 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "cli/input_error.hpp"
-#include "cli/value_list.hpp"
+#include "config/input_error.hpp"
+#include "config/value_list.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 

@@ -3,7 +3,7 @@
 // message; an unphysical simulation granchain.UnphysicalStateError (a RuntimeError, the CLI's exit
 // 3); a store that cannot be written granchain.StoreError (an OSError, the CLI's exit 4).
 #include "bindings.hpp"
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"
 #include "provenance.hpp"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <set>
 
-#include "cli/input_error.hpp"
+#include "config/input_error.hpp"
 #include "simulation/run_key.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
