@@ -59,7 +59,11 @@ nlohmann::json provenance_json() {
           {"threads", inv.threads},
           {"ranks", inv.ranks},
           {"build", build},
-          {"mpi", build.find("MPI on") != std::string::npos},
+#ifdef GRANCHAIN_WITH_MPI
+          {"mpi", true},
+#else
+          {"mpi", false},
+#endif
           {"code_version", code_version()},
           {"units", "lengths in d, masses in m, times in sqrt(d/g), energies in m g d (m = d = g = 1 unless given); "
                     "k_B T0 as given, in those energy units"}};

@@ -17,18 +17,14 @@ bool table1_e(double e) {
 }  // namespace
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
-  // (engine, N, kT0) -> e -> k -> (sum w, sum w n)
+  // (engine, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
   using Key = std::tuple<std::string, int, double>;
-  std::map<Key, std::map<double, std::map<double, std::pair<double, double>>>> groups;
+  using Runs = std::vector<std::pair<double, double>>;
+  std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
-  std::map<Key, std::map<std::pair<double, double>, std::vector<std::pair<double, double>>>> members;  // (e, k) -> runs
   for (const NcollRun& r : runs) {
     if (!std::isfinite(r.k) || !(r.n_coll_err > 0) || !std::isfinite(r.n_coll)) continue;
-    members[{r.engine, r.N, r.kT0}][{r.e, r.k}].push_back({r.n_coll, r.n_coll_err});
-    auto& acc = groups[{r.engine, r.N, r.kT0}][r.e][r.k];
-    const double w = 1.0 / (r.n_coll_err * r.n_coll_err);
-    acc.first += w;
-    acc.second += w * r.n_coll;
+    groups[{r.engine, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err});
     if (!r.stationary) unsettled[{r.engine, r.N, r.kT0}][r.e].push_back(r.k);
   }
   RegimeReport report;
@@ -43,7 +39,15 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     for (const auto& [e, by_k] : by_e) {
       CurveAnalysis curve;
       curve.e = e;
-      for (const auto& [k, acc] : by_k) curve.n_coll_of_k.push_back({k, acc.second / acc.first, 1.0 / std::sqrt(acc.first)});
+      for (const auto& [k, point_runs] : by_k) {
+        double w = 0, wn = 0;
+        for (const auto& [n, err] : point_runs) {
+          const double wi = 1.0 / (err * err);
+          w += wi;
+          wn += wi * n;
+        }
+        curve.n_coll_of_k.push_back({k, wn / w, 1.0 / std::sqrt(w)});
+      }
       all_curves.push_back({e, curve.n_coll_of_k});
       const auto u = unsettled.find(key);
       if (u != unsettled.end() && u->second.count(e)) curve.non_stationary_k = u->second.at(e);
@@ -72,13 +76,14 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       fam.e_c2_sign = e_c2_from_curvature_sign(curvatures);
     }
     {
-      std::vector<std::vector<std::pair<double, double>>> groups;
+      std::vector<Runs> point_groups;  // the runs of each (e, k), for the replica check
       std::vector<std::pair<double, double>> where;
-      for (const auto& [ek, g] : members[key]) {
-        groups.push_back(g);
-        where.push_back(ek);
-      }
-      fam.replicas = replica_scatter(groups);
+      for (const auto& [e, by_k] : by_e)
+        for (const auto& [k, point_runs] : by_k) {
+          point_groups.push_back(point_runs);
+          where.push_back({e, k});
+        }
+      fam.replicas = replica_scatter(point_groups);
       if (fam.replicas.worst >= 0) std::tie(fam.replicas_worst_e, fam.replicas_worst_k) = where[fam.replicas.worst];
     }
     if (!fam.alphas.empty()) {

@@ -3,9 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -195,10 +193,10 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     return kExitStoreFailed;
   }
   if (!impl.quiet && !json_stdout) {
-    fmt::print("{}", run_summary(result, stored));
-    errno = 0;
-    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      fmt::print(stderr, "granchain: error: cannot write standard output: {}{}\n", std::strerror(errno ? errno : EIO), kept);
+    try {
+      write_standard_output(run_summary(result, stored));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "granchain: error: {}{}\n", e.what(), kept);
       return kExitStoreFailed;
     }
   }

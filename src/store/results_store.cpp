@@ -246,11 +246,10 @@ int ResultsStore::schema_version() {
   return st.row() ? std::stoi(st.column_text(0)) : 0;
 }
 
-// Version 1 -> 2, in the caller's transaction: runs gains tc (the hard engine's TC time, NULL for
-// the soft engines) and bins, filled from each run's own JSON, and dt becomes NULL for the
-// event-driven engines (it was 0). SQLite cannot drop a NOT NULL constraint in place, so the
-// table is rebuilt (create, copy, drop, rename) and its index made again; profiles and run_points
-// keep their run ids.
+// Version 1 -> 2, in the caller's transaction: runs gains tc and bins, and dt may be NULL. SQLite
+// cannot drop a NOT NULL constraint in place, so the table is rebuilt (create, copy, drop, rename)
+// and its index made again; profiles and run_points keep their run ids. The rows are then given
+// their version-2 values (kVersion1RunsToVersion2).
 void ResultsStore::migrate_from_version_1() {
   // SQLite's order for a rebuild (create new, copy, drop old, rename new), with foreign keys off:
   // renaming the old table instead would rewrite the profiles' reference to follow it.
@@ -258,17 +257,16 @@ void ResultsStore::migrate_from_version_1() {
   exec(R"sql(INSERT INTO runs_version_2(id, created_utc, code_version, setup, engine, N, e, k, T0, m, d, g, T, transient, seed,
         dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err, n_coll_blocks, n_coll_converged,
         floor_rate, floor_rate_err, pp_rate, pp_rate_err, particle_collisions, floor_hits, steps, events, wall_seconds,
-        result_json, tc, bins)
+        result_json)
       SELECT id, created_utc, code_version, setup, engine, N, e, k, T0, m, d, g, T, transient, seed,
-        dt_factor, damping_D, tau_c, CASE WHEN dt > 0 THEN dt END, sample_interval, samples, n_coll, n_coll_err,
+        dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
         n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err, particle_collisions, floor_hits,
-        steps, events, wall_seconds, result_json,
-        CASE WHEN engine = 'hard' THEN json_extract(result_json, '$.parameters.tc') END,
-        json_extract(result_json, '$.parameters.bins')
+        steps, events, wall_seconds, result_json
       FROM runs)sql");
   exec("DROP TABLE runs");
   exec("ALTER TABLE runs_version_2 RENAME TO runs");
   exec("CREATE INDEX runs_by_point ON runs(setup, N, e, k, T0)");
+  exec(kVersion1RunsToVersion2);
   exec("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
 }
 

@@ -34,6 +34,14 @@ inline constexpr const char* kCollapseIdentityColumns[] = {"setup", "engine", "N
 // writable, and the path must not be a folder.
 std::string cannot_create_file_reason(const std::string& path);
 
+// The version-2 form of runs written in version 1 (dt = 0 for event-driven engines, no tc or bins):
+// dt NULL where it is 0, tc (hard engine) and bins from each run's JSON. Idempotent; for the
+// upgrade of a store and for runs merged from a version-1 source.
+inline constexpr const char* kVersion1RunsToVersion2 =
+    "UPDATE runs SET dt = NULL WHERE dt = 0;"
+    "UPDATE runs SET bins = json_extract(result_json, '$.parameters.bins') WHERE bins IS NULL;"
+    "UPDATE runs SET tc = json_extract(result_json, '$.parameters.tc') WHERE tc IS NULL AND engine = 'hard';";
+
 class ResultsStore {
  public:
   // Checks, without creating or changing anything, that `path` can hold a store: an existing

@@ -232,11 +232,7 @@ MergeReport merge_into(const std::string& target, const std::vector<std::string>
       merge_collapse(db, src.db, path, target, report);
       exec(src.db, "COMMIT");
     }
-    // Rows from a version-1 source carry dt = 0 for event-driven engines and no tc or bins: give
-    // them the version-2 form (ResultsStore::migrate_from_version_1).
-    exec(db, "UPDATE runs SET dt = NULL WHERE dt = 0");
-    exec(db, "UPDATE runs SET bins = json_extract(result_json, '$.parameters.bins') WHERE bins IS NULL");
-    exec(db, "UPDATE runs SET tc = json_extract(result_json, '$.parameters.tc') WHERE tc IS NULL AND engine = 'hard'");
+    exec(db, kVersion1RunsToVersion2);  // rows merged from a version-1 source
     exec(db, "COMMIT");
   } catch (...) {
     sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
