@@ -1,6 +1,6 @@
 #include "analysis/collapse_regimes.hpp"
 
-#include <Eigen/Dense>
+#include "analysis/least_squares.hpp"
 #include <map>
 
 #include <algorithm>
@@ -10,27 +10,6 @@
 namespace granchain::analysis {
 
 namespace {
-
-// Weighted least squares y ~ X c, weights 1/err^2: the coefficients from a column-pivoting QR
-// of the weighted design matrix (stable for nearly collinear columns such as 1, x, x^2 with x =
-// log10 k), their covariance (X^T W X)^-1, and chi^2. Throws when the points do not determine c.
-struct LeastSquares {
-  Eigen::VectorXd coef;
-  Eigen::MatrixXd covariance;
-  double chi2 = 0;
-};
-LeastSquares weighted_least_squares(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Eigen::VectorXd& err) {
-  const Eigen::VectorXd w_sqrt = err.cwiseInverse();
-  const Eigen::MatrixXd Xw = w_sqrt.asDiagonal() * X;
-  const Eigen::VectorXd yw = w_sqrt.cwiseProduct(y);
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Xw);
-  if (qr.rank() < X.cols()) throw std::invalid_argument("fit: the points do not determine the coefficients");
-  LeastSquares out;
-  out.coef = qr.solve(yw);
-  out.covariance = (Xw.transpose() * Xw).ldlt().solve(Eigen::MatrixXd::Identity(X.cols(), X.cols()));
-  out.chi2 = (Xw * out.coef - yw).squaredNorm();
-  return out;
-}
 
 std::vector<DataPoint> transformed(const std::vector<DataPoint>& pts, bool log_y) {
   std::vector<DataPoint> out;

@@ -1,0 +1,160 @@
+#include "analysis/asymptotic_forms.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "analysis/blocking.hpp"
+#include "analysis/least_squares.hpp"
+
+namespace granchain::analysis {
+
+const char* form_name(AsymptoticForm f) {
+  switch (f) {
+    case AsymptoticForm::PowerLaw: return "power law";
+    case AsymptoticForm::Logarithm: return "a + b ln k";
+    case AsymptoticForm::LogSquared: return "a + b ln k + c (ln k)^2";
+    case AsymptoticForm::PowerLawLog: return "power law with log";
+  }
+  return "?";
+}
+
+const char* form_formula(AsymptoticForm f) {
+  switch (f) {
+    case AsymptoticForm::PowerLaw: return "y = c k^alpha";
+    case AsymptoticForm::Logarithm: return "y = a + b ln k";
+    case AsymptoticForm::LogSquared: return "y = a + b ln k + c (ln k)^2";
+    case AsymptoticForm::PowerLawLog: return "y = c k^alpha (ln k)^beta";
+  }
+  return "?";
+}
+
+namespace {
+
+bool in_log_space(AsymptoticForm f) { return f == AsymptoticForm::PowerLaw || f == AsymptoticForm::PowerLawLog; }
+
+// The design row of a form at k (its columns multiply the parameters).
+std::vector<double> design_row(AsymptoticForm f, double k) {
+  const double L = std::log(k);
+  switch (f) {
+    case AsymptoticForm::PowerLaw: return {1.0, L};
+    case AsymptoticForm::Logarithm: return {1.0, L};
+    case AsymptoticForm::LogSquared: return {1.0, L, L * L};
+    case AsymptoticForm::PowerLawLog: return {1.0, L, std::log(L)};
+  }
+  return {};
+}
+
+// Generalised least squares: whitened by the Cholesky factor of the covariance, then the weighted
+// solver with unit errors.
+LeastSquares generalised_least_squares(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Eigen::MatrixXd& C) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(C);
+  if (llt.info() != Eigen::Success) throw std::invalid_argument("fit: the covariance of the points is not positive definite");
+  const Eigen::MatrixXd Xw = llt.matrixL().solve(X);
+  const Eigen::VectorXd yw = llt.matrixL().solve(y);
+  return weighted_least_squares(Xw, yw, Eigen::VectorXd::Ones(y.size()));
+}
+
+FormFit fit_form(AsymptoticForm f, const std::vector<double>& k, const Eigen::VectorXd& y, const Eigen::MatrixXd& C,
+                 const Eigen::LLT<Eigen::MatrixXd>& whiten) {
+  const auto n = static_cast<Eigen::Index>(k.size());
+  const auto p = static_cast<Eigen::Index>(design_row(f, k[0]).size());
+  Eigen::MatrixXd X(n, p);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::vector<double> row = design_row(f, k[static_cast<std::size_t>(i)]);
+    for (Eigen::Index j = 0; j < p; ++j) X(i, j) = row[static_cast<std::size_t>(j)];
+  }
+  LeastSquares ls;
+  if (in_log_space(f)) {
+    const Eigen::VectorXd inv_y = y.cwiseInverse();
+    ls = generalised_least_squares(X, y.array().log().matrix(), inv_y.asDiagonal() * C * inv_y.asDiagonal());
+  } else {
+    ls = generalised_least_squares(X, y, C);
+  }
+  FormFit out;
+  out.form = f;
+  for (Eigen::Index j = 0; j < p; ++j) {
+    out.param.push_back(ls.coef(j));
+    out.error.push_back(std::sqrt(ls.covariance(j, j)));
+  }
+  Eigen::VectorXd model = X * ls.coef;
+  if (in_log_space(f)) model = model.array().exp().matrix();
+  const Eigen::VectorXd r = y - model;
+  out.chi2 = whiten.matrixL().solve(r).squaredNorm();  // on y for every form
+  out.dof = static_cast<int>(n - p);
+  out.chi2_z = chi2_normal_deviate(out.chi2, out.dof);
+  const double pp = static_cast<double>(p), nn = static_cast<double>(n);
+  out.aicc = out.chi2 + 2 * pp + (nn - pp - 1 > 0 ? 2 * pp * (pp + 1) / (nn - pp - 1) : std::numeric_limits<double>::infinity());
+  out.bic = out.chi2 + pp * std::log(nn);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out.model.push_back(model(i));
+    out.pulls.push_back(r(i) / std::sqrt(C(i, i)));
+  }
+  return out;
+}
+
+}  // namespace
+
+FormComparison compare_asymptotic_forms(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C) {
+  const std::size_t n = k.size();
+  if (y.size() != n || static_cast<std::size_t>(C.rows()) != n || static_cast<std::size_t>(C.cols()) != n)
+    throw std::invalid_argument("asymptotic forms: k, y and the covariance must have the same size");
+  if (n < 4) throw std::invalid_argument("asymptotic forms: at least 4 points are needed");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(k[i] > 1.0)) throw std::invalid_argument("asymptotic forms: every k must be above 1 (ln ln k)");
+    if (!(y[i] > 0)) throw std::invalid_argument("asymptotic forms: every y must be positive");
+  }
+  const Eigen::LLT<Eigen::MatrixXd> whiten(C);
+  if (whiten.info() != Eigen::Success) throw std::invalid_argument("asymptotic forms: the covariance is not positive definite");
+  const Eigen::VectorXd yv = Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(n));
+  FormComparison out;
+  for (AsymptoticForm f : kAsymptoticForms) out.fits.push_back(fit_form(f, k, yv, C, whiten));
+  double best_a = std::numeric_limits<double>::infinity(), best_b = best_a;
+  for (std::size_t i = 0; i < out.fits.size(); ++i) {
+    if (out.fits[i].aicc < best_a) best_a = out.fits[i].aicc, out.best_aicc = static_cast<int>(i);
+    if (out.fits[i].bic < best_b) best_b = out.fits[i].bic, out.best_bic = static_cast<int>(i);
+  }
+  double sum = 0;
+  for (auto& f : out.fits) sum += f.akaike_weight = std::exp(-0.5 * (f.aicc - best_a));
+  for (auto& f : out.fits) f.akaike_weight /= sum;
+  return out;
+}
+
+FormComparison compare_asymptotic_forms(const std::vector<DataPoint>& pts) {
+  std::vector<double> k, y;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(pts.size()), static_cast<Eigen::Index>(pts.size()));
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!(pts[i].error > 0)) throw std::invalid_argument("asymptotic forms: every point needs a positive error");
+    k.push_back(pts[i].x);
+    y.push_back(pts[i].y);
+    C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = pts[i].error * pts[i].error;
+  }
+  return compare_asymptotic_forms(k, y, C);
+}
+
+SlopeTrend slope_trend(const std::vector<LocalExponent>& local) {
+  SlopeTrend t;
+  t.slope = t.slope_error = std::numeric_limits<double>::quiet_NaN();
+  std::vector<DataPoint> pts;
+  for (const auto& l : local)
+    if (std::isfinite(l.alpha) && l.error > 0) pts.push_back({0.5 * std::log10(l.k1 * l.k2), l.alpha, l.error});
+  if (pts.empty()) {
+    t.mean = t.mean_error = std::numeric_limits<double>::quiet_NaN();
+    return t;
+  }
+  double w = 0, wy = 0;
+  for (const auto& p : pts) w += 1 / (p.error * p.error), wy += p.y / (p.error * p.error);
+  t.mean = wy / w;
+  t.mean_error = 1 / std::sqrt(w);
+  for (const auto& p : pts) t.constant_chi2 += std::pow((p.y - t.mean) / p.error, 2);
+  t.constant_dof = static_cast<int>(pts.size()) - 1;
+  t.constant_z = chi2_normal_deviate(t.constant_chi2, t.constant_dof);
+  if (pts.size() >= 3) {
+    const PolynomialFit line = fit_polynomial(pts, 1);
+    t.slope = line.coef[1];
+    t.slope_error = line.error[1];
+  }
+  return t;
+}
+
+}  // namespace granchain::analysis

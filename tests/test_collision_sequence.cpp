@@ -1,0 +1,88 @@
+// The collision sequence of a collapse (analysis/collision_sequence): gaps, per-pair gaps and
+// collapse events on a hand-made sequence; a geometric and a power-law approach to a collapse
+// told apart and their ratio and exponent recovered; and the hard-sphere three-body collapse
+// (e < e_c(3)) read as geometric with the ratio of Eq. (deltat12), q per (1,2)+(2,3) cycle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/collision_sequence.hpp"
+#include "simulation/collapse_run.hpp"
+#include "theory/collapse_theory.hpp"
+
+using namespace granchain;
+using namespace granchain::analysis;
+
+TEST(CollisionSequence, GapsPairsAndEventsOfAHandMadeSequence) {
+  // Pairs 1, 2, 1 close together, a long flight, then 4, 5 close together, then 7 alone.
+  const std::vector<Collision> c = {{0.0, 0.1, 1}, {0.15, 0.2, 2}, {0.22, 0.3, 1}, {5.0, 5.1, 4}, {5.12, 5.2, 5}, {9.0, 9.1, 7}};
+  const std::vector<double> g = system_gaps(c);
+  ASSERT_EQ(g.size(), 5u);
+  EXPECT_NEAR(g[0], 0.05, 1e-12);
+  EXPECT_NEAR(g[2], 4.7, 1e-12);
+  const std::vector<double> p = pair_gaps(c);
+  ASSERT_EQ(p.size(), 1u);  // only pair 1 collides twice
+  EXPECT_NEAR(p[0], 0.12, 1e-12);
+  const std::vector<CollapseEvent> ev = collapse_events(c, 0.5, 2);
+  ASSERT_EQ(ev.size(), 2u);
+  EXPECT_EQ(ev[0].first, 0u);
+  EXPECT_EQ(ev[0].collisions, 3u);
+  EXPECT_EQ(ev[0].particles, 3);  // particles 1, 2, 3
+  EXPECT_EQ(ev[1].first, 3u);
+  EXPECT_EQ(ev[1].collisions, 2u);
+  EXPECT_EQ(ev[1].particles, 3);  // particles 4, 5, 6
+  EXPECT_EQ(collapse_events(c, 0.5, 1).size(), 3u);
+  EXPECT_EQ(particles_involved({{0, 0, 0}, {0, 0, 1}}, 0, 1), 2);  // the wall is no particle
+}
+
+// tau_n = t* - t_n = q^n exactly (q = 0.8) and tau_n = n^-1.5 (beta = 2.5): each is a straight
+// line in its own coordinates, recovered to round-off, and the other line fits worse.
+TEST(CollisionSequence, GeometricAndPowerLawApproachesAreToldApart) {
+  const double t_star = 3.0;
+  std::vector<Collision> geo, pow;
+  for (int n = 1; n <= 200; ++n) {
+    const double tg = t_star - std::pow(0.8, n), tp = t_star - std::pow(static_cast<double>(n), -1.5);
+    geo.push_back({tg, tg, 1 + n % 2});
+    pow.push_back({tp, tp, 1 + n % 2});
+  }
+  // Above tau = 1e-9 the subtraction t* - t_n keeps tau to 1e-6 relative (t* = 3, 16 digits).
+  const ShrinkFit g = fit_remaining_time(geo, t_star, 1e-9, 1.0), p = fit_remaining_time(pow, t_star, 1e-9, 1.0);
+  EXPECT_NEAR(g.ln_q, std::log(0.8), 1e-5);
+  EXPECT_LT(g.rms_geometric, 1e-5);
+  EXPECT_GT(g.rms_power, 100 * g.rms_geometric + 0.1);
+  EXPECT_NEAR(p.beta, 2.5, 1e-5);
+  EXPECT_LT(p.rms_power, 1e-5);
+  EXPECT_GT(p.rms_geometric, 100 * p.rms_power + 0.1);
+  // n(tau): collisions with tau_n >= tau; for q^n >= 1e-3, n <= ln(1e-3)/ln(0.8) = 30.96.
+  EXPECT_EQ(collisions_before_remaining(geo, t_star, {1e-3})[0], 30.0);
+  EXPECT_EQ(collisions_before_remaining(pow, t_star, {1e-3})[0], 99.0);  // n^-1.5 >= 1e-3 for n <= 100, tau exactly 1e-3 at n = 100 loses to round-off
+  EXPECT_LT(fit_remaining_time(geo, t_star, 0.5, 1.0).points, 4);
+}
+
+// Three hard spheres below e_c(3) collapse with the interval of each pair shrinking by q per cycle
+// of two collisions (Eq. deltat12): the remaining time falls by sqrt(q) per collision on average.
+// The fit over tau = 1e-9 ... 1e-2 (well above the time resolution of t ~ 1) reads ln q / 2 to 3 %
+// (the two collisions of a cycle shrink tau by unequal factors, which the straight line averages),
+// and a power of n fits far worse.
+TEST(CollisionSequence, ThreeHardSpheresCollapseGeometrically) {
+  for (double e : {0.03, 0.05}) {
+    CollapseSpec spec;
+    spec.params.N = 3;
+    spec.params.e = e;
+    spec.params.g = 0.0;
+    spec.engine.name = "hard";
+    spec.realizations = 20;
+    std::vector<std::vector<Collision>> seq(20);
+    const CollapseResult r = run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
+      for (const auto& x : recs) seq[static_cast<std::size_t>(x.realization)].push_back({x.t_begin, x.t_end, x.i});
+    });
+    // Not every launch collapses: some end with the three separating before the sequence sets in.
+    std::size_t l = 0;
+    while (l < r.outcomes.size() && !r.outcomes[l].collapsed) ++l;
+    ASSERT_LT(l, r.outcomes.size()) << "no launch collapsed at e = " << e;
+    const ShrinkFit f = fit_remaining_time(seq[l], r.outcomes[l].t_stop, 1e-9, 1e-2);
+    ASSERT_GE(f.points, 8) << "e = " << e;
+    EXPECT_NEAR(f.ln_q, 0.5 * std::log(theory::q_ratio(e)), 0.03 * 0.5 * std::abs(std::log(theory::q_ratio(e)))) << "e = " << e;
+    EXPECT_LT(f.rms_geometric * 3, f.rms_power) << "e = " << e;
+  }
+}
