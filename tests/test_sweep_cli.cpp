@@ -278,11 +278,37 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
   const CliResult again = run("reproduce --figure fig9 --preset smoke --out figs");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.err.find("already in reproduce.db, 0 to run"), std::string::npos) << again.err;
-  // fig10's free-space counts are recomputed on a repeat but stored once.
+  // fig10's free-space counts are stored once and read back on a repeat, not recounted.
   const auto collapse_rows = query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs");
   EXPECT_GT(collapse_rows, 0);
-  ASSERT_EQ(run("reproduce --figure fig10 --preset smoke --out figs -q").exit_code, 0);
+  const CliResult fig10 = run("reproduce --figure fig10 --preset smoke --out figs");
+  ASSERT_EQ(fig10.exit_code, 0) << fig10.err;
+  EXPECT_EQ(fig10.err.find("launches"), std::string::npos) << fig10.err;
   EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs"), collapse_rows);
+  EXPECT_EQ(all.find("limit-free"), std::string::npos);  // the group beyond is not part of all
+}
+
+// The group beyond on tiny grids: its three figures and reports exist, the forms are compared
+// where four k are fitted, the hard-sphere launches collapse, and a repeat reuses every stored
+// count and run.
+TEST_F(SweepCli, SmokePresetDrawsTheGroupBeyond) {
+  const CliResult r = run("reproduce --figure beyond --preset smoke --out figs -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"limit-free.png", "limit-free.pdf", "limit-driven.png", "intervals.png", "report-limit-free.md",
+                        "report-limit-driven.md", "report-intervals.md", "report-beyond.md"})
+    EXPECT_TRUE(fs::exists(dir_ / "figs" / f)) << f;
+  const std::string beyond = slurp(dir_ / "figs/report-beyond.md");
+  for (const char* s : {"| limit-free |", "| limit-driven |", "| intervals |", "Local exponent:", "Verdict:", "### Hard spheres, e = 0.3: 20 of 20 launches collapse",
+                        "collapse events per launch"})
+    EXPECT_NE(beyond.find(s), std::string::npos) << s;
+  EXPECT_EQ(beyond.find("failed"), std::string::npos) << beyond.substr(0, 800);
+  const auto counts = query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs");
+  EXPECT_EQ(counts, 4 * 4);  // N = 10, 25 x e = 0.3, 0.5 x k = 1e4 ... 1e7
+  const CliResult again = run("reproduce --figure limit-driven --preset smoke --out figs");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("0 to run"), std::string::npos) << again.err;
+  ASSERT_EQ(run("reproduce --figure limit-free --preset smoke --out figs -q").exit_code, 0);
+  EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs"), counts);
 }
 
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law

@@ -13,6 +13,7 @@
 #include "sweep/sweep_progress.hpp"
 #include "store/results_store.hpp"
 #include "sweep/sweep_runner.hpp"
+#include "simulation/collapse_run.hpp"
 
 namespace granchain {
 
@@ -43,6 +44,17 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
     return a.cost != b.cost ? a.cost > b.cost : a.key < b.key;
   });
   return all;
+}
+
+CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
+  ResultsStore store(o.db);
+  if (std::optional<CollapseResult> stored = store.find_collapse(spec)) return *stored;
+  if (!o.quiet)
+    fmt::print(stderr, "reproduce {}: N = {}, e = {:g}, k = {:g}, {} launches\n", label, spec.params.N, spec.params.e, spec.params.k,
+               spec.realizations);
+  CollapseResult r = run_collapse(spec);
+  store.insert_collapse(r);
+  return r;
 }
 
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label) {

@@ -50,6 +50,12 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
 // stored). Throws StoreError.
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label);
 
+// A free-space collapse count as stored in o.db (ResultsStore::find_collapse), or run now (progress
+// line on stderr unless quiet) and stored. Throws StoreError or UnphysicalStateError.
+struct CollapseSpec;
+struct CollapseResult;
+CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label);
+
 // The analysis (`granchain analyze`) of exactly these points as stored, fits over k >= k_min.
 StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min);
 
@@ -72,6 +78,7 @@ std::vector<GridBlock> ncoll_grid(const ReproduceFlags& o);                 // f
 std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o);  // fig8
 std::vector<GridBlock> across_n_grid(const ReproduceFlags& o);              // fig6, fig7, fig9
 std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // table1
+std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o);          // limit-driven
 
 // The statements of Sec. III.B on the fine structure of n_coll(e) (N = 3..6) tested on these
 // points' curves at their largest k, per seed and combined: a Markdown section ("" without data).
@@ -89,5 +96,9 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o);  // fig8 
 FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o);          // fig9 (powerexpo)
 FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o);   // fig10 (ntot)
 FigureOutcome reproduce_table1(const ReproduceFlags& o);              // table1
+// Beyond the paper (group `beyond`): the k -> infinity limit and the collision sequences.
+FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o);  // limit-free
+FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o);      // limit-driven
+FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o);   // intervals
 
 }  // namespace granchain

@@ -29,7 +29,6 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
   nlohmann::json plot = {{"series", nlohmann::json::array()}};
   std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
   std::string n25 = "| e | k1 → k2 | n_tot(k2) | local α |\n|---|---|---|---|\n";
-  ResultsStore store(o.db);
   for (const Series& s : series) {
     std::vector<CollapseResult> results;
     for (double k : parse_value_list(s.k, "--k")) {
@@ -40,9 +39,7 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
       spec.params.g = 0.0;
       spec.realizations = s.realizations;
       spec.threads = o.threads;
-      if (!o.quiet) fmt::print(stderr, "reproduce fig10: N = {}, e = {:g}, k = {:g}, {} launches\n", s.N, s.e, k, s.realizations);
-      results.push_back(run_collapse(spec));
-      store.insert_collapse(results.back());  // recomputed (a few seconds), stored once
+      results.push_back(stored_or_run_collapse(spec, o, "fig10"));
     }
     nlohmann::json js = {{"N", s.N}, {"e", s.e}, {"k", nlohmann::json::array()}, {"n_tot", nlohmann::json::array()},
                          {"error", nlohmann::json::array()}};

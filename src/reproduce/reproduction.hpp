@@ -13,16 +13,21 @@ struct FigureEntry {
   const char* label;  // the paper's LaTeX label
   FigureOutcome (*run)(const ReproduceFlags&);
   std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
+  const char* group = "all";  // all: the paper's figures; beyond: past the paper (the k -> infinity limit)
 };
 
-// fig1 ... fig10 and table1, in the paper's order.
+// fig1 ... fig10 and table1 in the paper's order, then the group beyond (limit-free, limit-driven,
+// intervals).
 const std::vector<FigureEntry>& figures();
-// The figures `figure` names ("all": every one); empty when it names none.
+// The figures `figure` names: one figure, or a group ("all": the paper's; "beyond"); empty when it
+// names none.
 std::vector<const FigureEntry*> chosen_figures(const std::string& figure);
-// "fig1, fig2, ..., table1, " for messages.
+bool is_figure_group(const std::string& figure);
+// "fig1, fig2, ..., table1, limit-free, ..., " for messages.
 std::string figure_names();
 
-// report.md for Fig. 5 (the main job's), report-<figure>.md for the others, report-all.md for all.
+// report.md for Fig. 5 (the main job's), report-<figure>.md for the others, report-all.md and
+// report-beyond.md for the groups.
 std::string report_name(const std::string& figure);
 
 // Prints the sweeps behind the chosen figures as `granchain sweep` commands, each grid block once,

@@ -244,6 +244,12 @@ KSlope k_slope(const CollapseResult& a, const CollapseResult& b) {
   const double ln_k = std::log(s.k2 / s.k1);
   s.alpha = std::log(b.n_tot_mean / a.n_tot_mean) / ln_k;
   s.alpha_error = std::hypot(a.n_tot_error / a.n_tot_mean, b.n_tot_error / b.n_tot_mean) / ln_k;
+  std::vector<double> rel;
+  for (std::size_t r = 0; r < a.outcomes.size() && r < b.outcomes.size(); ++r) {
+    if (a.outcomes[r].collapsed || b.outcomes[r].collapsed) continue;
+    rel.push_back(static_cast<double>(b.outcomes[r].n_tot()) / b.n_tot_mean - static_cast<double>(a.outcomes[r].n_tot()) / a.n_tot_mean);
+  }
+  s.alpha_paired_error = mean_and_error(rel).second / ln_k;
   return s;
 }
 

@@ -426,6 +426,40 @@ void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
 
 }  // namespace
 
+std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& spec) {
+  std::string where;
+  for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
+  SqlStatement find(db_, ("SELECT id, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed, wall_seconds FROM collapse_runs WHERE " +
+                          where + " ORDER BY id LIMIT 1")
+                             .c_str());
+  int f = 1;
+  bind_collapse_definition(find, f, spec);
+  if (!find.row()) return std::nullopt;
+  CollapseResult r;
+  r.spec = spec;
+  const std::int64_t id = find.column_int(0);
+  r.law.tau_c = find.column_double(1);
+  r.n_tot_mean = find.column_double(2);
+  r.n_tot_error = find.column_double(3);
+  r.n_tot_min = static_cast<std::uint64_t>(find.column_int(4));
+  r.n_tot_max = static_cast<std::uint64_t>(find.column_int(5));
+  r.collapsed = static_cast<int>(find.column_int(6));
+  r.wall_seconds = find.column_double(7);
+  SqlStatement real(db_, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_realizations WHERE run_id = ? ORDER BY realization");
+  real.bind(1, id);
+  while (real.row()) {
+    RealizationOutcome o;
+    o.particle_collisions = static_cast<std::uint64_t>(real.column_int(0));
+    o.wall_hits = static_cast<std::uint64_t>(real.column_int(1));
+    o.collapsed = real.column_int(2) != 0;
+    o.t_stop = real.column_double(3);
+    r.collisions += o.particle_collisions;
+    r.outcomes.push_back(o);
+  }
+  if (static_cast<int>(r.outcomes.size()) != spec.realizations) return std::nullopt;  // an incomplete row is not the count
+  return r;
+}
+
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   return in_transaction([&] {
     std::string where;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_set>
 
@@ -82,6 +83,9 @@ class ResultsStore {
   // (kCollapseIdentityColumns), so one already stored with the same definition is kept and its id
   // returned: a repeated command adds nothing.
   std::int64_t insert_collapse(const CollapseResult& r);
+  // The stored count with this definition (kCollapseIdentityColumns), with its per-launch outcomes,
+  // or nothing. What the store does not keep (contacts below the exact engine's resolution) is 0.
+  std::optional<CollapseResult> find_collapse(const CollapseSpec& spec);
   std::int64_t count_runs();
   sqlite3* handle() { return db_; }
 

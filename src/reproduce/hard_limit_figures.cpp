@@ -1,0 +1,224 @@
+// `granchain reproduce --figure limit-free` and `limit-driven` (group `beyond`): how the collision
+// count grows as k -> infinity, past the paper's k range. Free-space collapse (Sec. III.D) at
+// N = 10, 25, 50 and the driven column at N = 25 (Sec. III.C): local exponents d ln n / d ln k per
+// decade with errors, and the candidate asymptotic forms (analysis/asymptotic_forms) compared by
+// AICc and BIC with their pulls, beside the trend of the local slope.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "analysis/asymptotic_forms.hpp"
+#include "config/exit_codes.hpp"
+#include "config/value_list.hpp"
+#include "reproduce/figures.hpp"
+#include "simulation/collapse_run.hpp"
+#include "store/results_store.hpp"
+
+namespace granchain {
+
+using analysis::FormComparison;
+using analysis::LocalExponent;
+
+namespace {
+
+nlohmann::json local_json(const std::vector<LocalExponent>& local) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& l : local) j.push_back({{"k1", l.k1}, {"k2", l.k2}, {"alpha", l.alpha}, {"error", l.error}});
+  return j;
+}
+
+// The forms fitted to (k, y, covariance) for k >= k_fit: their JSON and a Markdown table with the
+// verdict. Fewer than 4 points: no fit, said so.
+struct FormsOutcome {
+  nlohmann::json json;
+  std::string markdown;
+};
+FormsOutcome compare_forms(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, double k_fit) {
+  std::vector<Eigen::Index> use;
+  for (std::size_t i = 0; i < k.size(); ++i)
+    if (k[i] >= k_fit * (1 - 1e-9)) use.push_back(static_cast<Eigen::Index>(i));
+  FormsOutcome out{nullptr, ""};
+  if (use.size() < 4) {
+    out.markdown = fmt::format("Fewer than 4 values of k ≥ {}: the forms are not compared.\n", power_of_ten_text(k_fit));
+    return out;
+  }
+  std::vector<double> kk, yy;
+  Eigen::MatrixXd CC(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(use.size()));
+  for (std::size_t a = 0; a < use.size(); ++a) {
+    kk.push_back(k[static_cast<std::size_t>(use[a])]);
+    yy.push_back(y[static_cast<std::size_t>(use[a])]);
+    for (std::size_t b = 0; b < use.size(); ++b) CC(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = C(use[a], use[b]);
+  }
+  const FormComparison c = analysis::compare_asymptotic_forms(kk, yy, CC);
+  const double best_a = c.fits[static_cast<std::size_t>(c.best_aicc)].aicc, best_b = c.fits[static_cast<std::size_t>(c.best_bic)].bic;
+  out.json = {{"k", kk}, {"forms", nlohmann::json::array()}, {"best_aicc", c.best_aicc}, {"best_bic", c.best_bic}};
+  out.markdown = fmt::format("Forms fitted over k = {} … {} ({} points, covariance of the points included):\n\n"
+                             "| form | parameters | χ² / dof | ΔAICc | ΔBIC | Akaike weight | largest pull |\n|---|---|---|---|---|---|---|\n",
+                             power_of_ten_text(kk.front()), power_of_ten_text(kk.back()), kk.size());
+  for (const auto& f : c.fits) {
+    std::string params;
+    const char* names[3] = {f.form == analysis::AsymptoticForm::PowerLaw || f.form == analysis::AsymptoticForm::PowerLawLog ? "ln c" : "a",
+                            f.form == analysis::AsymptoticForm::PowerLaw || f.form == analysis::AsymptoticForm::PowerLawLog ? "α" : "b",
+                            f.form == analysis::AsymptoticForm::PowerLawLog ? "β" : "c"};
+    for (std::size_t i = 0; i < f.param.size(); ++i) params += fmt::format("{}{} = {}", i ? ", " : "", names[i], plus_minus(f.param[i], f.error[i], 4));
+    double worst = 0;
+    for (double p : f.pulls) worst = std::max(worst, std::abs(p));
+    out.markdown += fmt::format("| {} | {} | {:.1f} / {} | {:.1f} | {:.1f} | {:.3f} | {:.1f} |\n", analysis::form_formula(f.form), params, f.chi2,
+                                f.dof, f.aicc - best_a, f.bic - best_b, f.akaike_weight, worst);
+    out.json["forms"].push_back({{"name", analysis::form_name(f.form)}, {"formula", analysis::form_formula(f.form)}, {"param", f.param},
+                                 {"error", f.error}, {"chi2", f.chi2}, {"dof", f.dof}, {"aicc", f.aicc}, {"bic", f.bic},
+                                 {"weight", f.akaike_weight}, {"model", f.model}, {"pulls", f.pulls}});
+  }
+  const auto& best = c.fits[static_cast<std::size_t>(c.best_aicc)];
+  const bool fits = best.chi2_z < 3.0;
+  std::string verdict;
+  if (!fits)
+    verdict = fmt::format("no form fits (the best, {}, has χ² deviate {:.1f}): no conclusion", analysis::form_name(best.form), best.chi2_z);
+  else if (best.akaike_weight >= 0.9 && c.best_aicc == c.best_bic)
+    verdict = fmt::format("the data support **{}** (Akaike weight {:.2f}, also BIC's choice)", analysis::form_name(best.form), best.akaike_weight);
+  else {
+    std::string close;
+    for (const auto& f : c.fits)
+      if (f.aicc - best_a < 4.0 && &f != &best) close += fmt::format("{}{}", close.empty() ? "" : ", ", analysis::form_name(f.form));
+    verdict = fmt::format("AICc prefers {} (weight {:.2f}), BIC {}; within ΔAICc < 4: {}: no conclusion between them", analysis::form_name(best.form),
+                          best.akaike_weight, analysis::form_name(c.fits[static_cast<std::size_t>(c.best_bic)].form), close.empty() ? "none" : close);
+  }
+  out.json["verdict"] = verdict;
+  out.markdown += "\nVerdict: " + verdict + ".\n";
+  return out;
+}
+
+std::string trend_text(const std::vector<LocalExponent>& local, nlohmann::json& js) {
+  const analysis::SlopeTrend t = analysis::slope_trend(local);
+  js["trend"] = {{"mean", t.mean}, {"mean_error", t.mean_error}, {"constant_chi2", t.constant_chi2}, {"constant_dof", t.constant_dof},
+                 {"constant_z", t.constant_z}, {"slope", t.slope}, {"slope_error", t.slope_error}};
+  if (!std::isfinite(t.slope)) return "Too few local exponents for a trend.\n";
+  return fmt::format("Local exponent: {}. Constant (one power law): mean {}, χ² = {:.1f} on {} dof (deviate {:.1f}); linear trend "
+                     "{} per decade of k ({:.1f} standard errors from zero).\n",
+                     local_exponents_text(local), plus_minus(t.mean, t.mean_error, 3), t.constant_chi2, t.constant_dof, t.constant_z,
+                     plus_minus(t.slope, t.slope_error, 4), t.slope / t.slope_error);
+}
+
+struct FreeSeries {
+  int N;
+  double e;
+  std::string k;
+  int launches;
+};
+
+std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
+  std::vector<FreeSeries> s;
+  for (int N : o.smoke() ? std::vector<int>{10, 25} : std::vector<int>{10, 25, 50})
+    for (double e : {0.3, 0.5}) {
+      const int launches = o.smoke() ? 10 : o.paper() ? (N == 10 ? 2000 : N == 25 ? 1000 : 200) : (N == 10 ? 400 : N == 25 ? 100 : 40);
+      s.push_back({N, e, o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e14:x10" : "1e4:1e10:x10", launches});
+    }
+  return s;
+}
+
+}  // namespace
+
+FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
+  const double k_fit = o.smoke() ? 1e4 : 1e5;
+  nlohmann::json plot = {{"title", "free-space collapse"}, {"y_label", "n_tot"}, {"series", nlohmann::json::array()}};
+  std::string md = fmt::format("Command: `granchain reproduce --figure limit-free --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
+                               "dv0 = 0.1, stop rule `ends`), exact engine, the same launches at every k: local exponents "
+                               "α = ln(n2/n1)/ln(k2/k1) per decade with errors from the paired launches, and the forms fitted with "
+                               "the covariance of the counts across k estimated from the launches. Counts are stored in --db (table "
+                               "collapse_runs) and reused. Figure: `limit-free.png` (and .pdf).\n",
+                               o.preset);
+  for (const FreeSeries& s : free_series(o)) {
+    std::vector<CollapseResult> results;
+    for (double k : parse_value_list(s.k, "--k")) {
+      CollapseSpec spec;
+      spec.params.N = s.N;
+      spec.params.e = s.e;
+      spec.params.k = k;
+      spec.params.g = 0.0;
+      spec.realizations = s.launches;
+      spec.threads = o.threads;
+      results.push_back(stored_or_run_collapse(spec, o, "limit-free"));
+    }
+    const std::size_t nk = results.size();
+    std::vector<double> k, y, err;
+    for (const auto& r : results) k.push_back(r.spec.params.k), y.push_back(r.n_tot_mean), err.push_back(r.n_tot_error);
+    // Covariance of the means across k from the launches (each launch at every k).
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nk), static_cast<Eigen::Index>(nk));
+    const std::size_t R = results[0].outcomes.size();
+    for (std::size_t a = 0; a < nk; ++a)
+      for (std::size_t b = 0; b < nk; ++b) {
+        double sum = 0;
+        for (std::size_t r = 0; r < R; ++r)
+          sum += (static_cast<double>(results[a].outcomes[r].n_tot()) - y[a]) * (static_cast<double>(results[b].outcomes[r].n_tot()) - y[b]);
+        C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = sum / static_cast<double>((R - 1) * R);
+      }
+    std::vector<LocalExponent> local;
+    for (std::size_t i = 0; i + 1 < nk; ++i) {
+      const KSlope sl = k_slope(results[i], results[i + 1]);
+      local.push_back({sl.k1, sl.k2, sl.alpha, sl.alpha_paired_error});
+    }
+    nlohmann::json js = {{"label", fmt::format("N = {}, e = {:g}", s.N, s.e)}, {"N", s.N}, {"e", s.e}, {"k", k}, {"y", y}, {"error", err},
+                         {"launches", s.launches}, {"local", local_json(local)}};
+    md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\n| k | n_tot | local α to the next k |\n|---|---|---|\n", s.N, s.e, s.launches);
+    for (std::size_t i = 0; i < nk; ++i)
+      md += fmt::format("| {} | {} | {} |\n", power_of_ten_text(k[i]), plus_minus(y[i], err[i], 1),
+                        i + 1 < nk ? plus_minus(local[i].alpha, local[i].error, 3) : "");
+    md += "\n" + trend_text(local, js) + "\n";
+    const FormsOutcome forms = compare_forms(k, y, C, k_fit);
+    js["fit"] = forms.json;
+    md += forms.markdown;
+    plot["series"].push_back(js);
+  }
+  FigureOutcome out{kExitOk, md, draw_figure(o, "limit-free", plot, "limit_exponents.py")};
+  return out;
+}
+
+std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o) {
+  if (o.paper()) return {{"25", "0.1:0.5:0.1", "1e5:1e12:x10", "1e4"}};
+  if (o.smoke()) return {{"25", "0.1:0.5:0.2", "1e4:1e6:x10", "20"}};
+  return {{"25", "0.1:0.5:0.1", "1e4:1e9:x10", "1000"}};
+}
+
+FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
+  const std::vector<SweepPoint> points = grid_points(driven_limit_grid(o));
+  const std::vector<std::string> failed = run_missing_points(points, o, "limit-driven");
+  const double k_fit = o.paper() ? 1e6 : o.smoke() ? 1e4 : 1e5;
+  const StoreAnalysis a = analyze_points(o.db, points, k_fit);
+  const std::string T = driven_limit_grid(o)[0].T;
+  nlohmann::json plot = {{"title", "driven column, N = 25"}, {"y_label", "n_coll"}, {"series", nlohmann::json::array()}};
+  std::string md = fmt::format("Command: `granchain reproduce --figure limit-driven --preset {}`. Driven column N = 25, k_B T0 = 1, "
+                               "measuring time T = {} (transient T/10), exact engine, one run per point (runs stored in --db and "
+                               "reused, so the paper preset shares fig5's points up to k = 1e10). Local exponents between successive k "
+                               "with errors from the two runs' blocking errors; forms fitted over k ≥ {} with independent errors. "
+                               "Figure: `limit-driven.png` (and .pdf).\n",
+                               o.preset, T, power_of_ten_text(k_fit));
+  for (const auto& fam : a.report.families)
+    for (const auto& c : fam.curves) {
+      std::vector<double> k, y, err;
+      for (const auto& p : c.n_coll_of_k) k.push_back(p.x), y.push_back(p.y), err.push_back(p.error);
+      const std::vector<LocalExponent> local = analysis::local_exponents(c.n_coll_of_k);
+      nlohmann::json js = {{"label", fmt::format("e = {:g}", c.e)}, {"N", fam.N}, {"e", c.e}, {"k", k}, {"y", y}, {"error", err},
+                           {"local", local_json(local)}, {"non_stationary_k", c.non_stationary_k}};
+      md += fmt::format("\n### e = {:g}\n\n| k | n_coll | local α to the next k |\n|---|---|---|\n", c.e);
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        bool unsettled = false;
+        for (double u : c.non_stationary_k) unsettled = unsettled || u == k[i];
+        md += fmt::format("| {} | {}{} | {} |\n", power_of_ten_text(k[i]), plus_minus(y[i], err[i], 3), unsettled ? " [not stationary]" : "",
+                          i + 1 < k.size() && i < local.size() ? plus_minus(local[i].alpha, local[i].error, 3) : "");
+      }
+      md += "\n" + trend_text(local, js) + "\n";
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(k.size()), static_cast<Eigen::Index>(k.size()));
+      for (std::size_t i = 0; i < k.size(); ++i) C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = err[i] * err[i];
+      const FormsOutcome forms = compare_forms(k, y, C, k_fit);
+      js["fit"] = forms.json;
+      md += forms.markdown;
+      plot["series"].push_back(js);
+    }
+  FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py")};
+  for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
+  return out;
+}
+
+}  // namespace granchain

@@ -1,0 +1,281 @@
+// `granchain reproduce --figure intervals` (group `beyond`): the collision sequences of free-space
+// collapses (Sec. III.D), to see where n_tot ~ k^alpha comes from (paper Summary: intervals that
+// shrink as a power of the collision number rather than geometrically, as for three bodies).
+//   Hard spheres (k = infinity), up to the detected collapse: the remaining time tau_n = t* - t_n
+//   against n, geometric or a power of n (analysis/collision_sequence); the count n(tau) of
+//   collisions before the sequence comes within tau of the collapse, the count a cut-off at tau
+//   leaves, set against k through tau = tau_c(k); the particles of the final collapse.
+//   Soft spheres at large k: the gaps between collisions in units of tau_c, and the collapse events
+//   (runs of collisions less than 10 tau_c apart): how many per launch, how many collisions and
+//   particles each, against k.
+// The sequences are recomputed on each call (minutes at most); nothing is stored.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "analysis/asymptotic_forms.hpp"
+#include "analysis/collision_sequence.hpp"
+#include "config/exit_codes.hpp"
+#include "reproduce/figures.hpp"
+#include "simulation/collapse_run.hpp"
+
+namespace granchain {
+
+namespace {
+
+using analysis::Collision;
+
+constexpr int kN = 25;
+constexpr double kEventGap = 10.0;  // a collapse event: successive gaps below 10 tau_c
+constexpr std::size_t kEventMin = 3;
+
+std::vector<Collision> to_sequence(const std::vector<CollisionRecord>& recs) {
+  std::vector<Collision> c;
+  c.reserve(recs.size());
+  for (const auto& r : recs) c.push_back({r.t_begin, r.t_end, r.i});
+  return c;
+}
+
+std::pair<double, double> mean_error(const std::vector<double>& x) {
+  if (x.empty()) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  double m = 0, v = 0;
+  for (double a : x) m += a / static_cast<double>(x.size());
+  for (double a : x) v += (a - m) * (a - m);
+  return {m, x.size() > 1 ? std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size())) : 0.0};
+}
+
+double median(std::vector<double> x) {
+  if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2), x.end());
+  return x[x.size() / 2];
+}
+
+// The k whose contact duration tau_c = pi / sqrt(2k/m) (undamped, m = 1) equals tau.
+double k_of_tau(double tau) { return 0.5 * std::pow(M_PI / tau, 2); }
+
+struct HardOutcome {
+  nlohmann::json json;
+  std::string markdown;
+};
+
+HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
+  std::vector<double> taus;
+  for (int j = 2; j <= 16; ++j) taus.push_back(std::pow(10.0, -0.5 * j));  // 1e-1 .. 1e-8
+  CollapseSpec spec;
+  spec.params.N = kN;
+  spec.params.e = e;
+  spec.params.k = std::numeric_limits<double>::infinity();
+  spec.params.g = 0.0;
+  spec.engine.name = "hard";
+  spec.realizations = launches;
+  spec.threads = o.threads;
+  const std::size_t last = spec.engine.hard.collapse_collisions;
+  std::vector<std::vector<double>> counts;  // per collapsed launch, n(tau)
+  std::vector<double> ln_q, beta, particles;
+  int geometric_closer = 0, fitted = 0;
+  nlohmann::json samples = nlohmann::json::array();
+  run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
+    if (recs.size() < last + 4) return;  // ended without a collapse (counted below from the result)
+    const std::vector<Collision> seq = to_sequence(recs);
+    const double t_star = seq.back().t_begin;  // within collapse_time of the collapse
+    counts.push_back(analysis::collisions_before_remaining(seq, t_star, taus));
+    particles.push_back(analysis::particles_involved(seq, seq.size() - last, seq.size() - 1));
+    const analysis::ShrinkFit f = analysis::fit_remaining_time(seq, t_star, 1e-8, 1e-2);
+    if (f.points >= 4) {
+      ++fitted;
+      geometric_closer += f.rms_geometric < f.rms_power;
+      ln_q.push_back(f.ln_q);
+      beta.push_back(f.beta);
+    }
+    if (samples.size() < 4) {
+      nlohmann::json s = {{"n", nlohmann::json::array()}, {"tau", nlohmann::json::array()}};
+      for (std::size_t n = 0; n < seq.size(); ++n) {
+        const double tau = t_star - seq[n].t_begin;
+        if (tau < 1e-9) break;
+        s["n"].push_back(n + 1);
+        s["tau"].push_back(tau);
+      }
+      samples.push_back(s);
+    }
+  });
+  HardOutcome out;
+  const std::size_t R = counts.size();
+  std::vector<double> n_mean(taus.size(), 0.0), n_err(taus.size(), 0.0), kq;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(taus.size()), static_cast<Eigen::Index>(taus.size()));
+  for (std::size_t i = 0; i < taus.size(); ++i) {
+    kq.push_back(k_of_tau(taus[i]));
+    for (const auto& c : counts) n_mean[i] += c[i] / static_cast<double>(R);
+  }
+  if (R >= 2) {
+    for (std::size_t a = 0; a < taus.size(); ++a)
+      for (std::size_t b = 0; b < taus.size(); ++b) {
+        double s = 0;
+        for (const auto& c : counts) s += (c[a] - n_mean[a]) * (c[b] - n_mean[b]);
+        C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = s / static_cast<double>((R - 1) * R);
+      }
+    for (std::size_t i = 0; i < taus.size(); ++i) n_err[i] = std::sqrt(C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
+  }
+  // Local exponents d ln n / d ln k_tau between successive tau, errors from the paired launches.
+  std::vector<analysis::LocalExponent> local;
+  for (std::size_t i = 0; R >= 2 && i + 1 < taus.size(); ++i) {
+    std::vector<double> rel;
+    for (const auto& c : counts) rel.push_back(c[i + 1] / n_mean[i + 1] - c[i] / n_mean[i]);
+    const double span = std::log(kq[i + 1] / kq[i]);
+    local.push_back({kq[i], kq[i + 1], std::log(n_mean[i + 1] / n_mean[i]) / span, mean_error(rel).second / span});
+  }
+  const auto [p_mean, p_err] = mean_error(particles);
+  const double pmin = particles.empty() ? 0 : *std::min_element(particles.begin(), particles.end());
+  const double pmax = particles.empty() ? 0 : *std::max_element(particles.begin(), particles.end());
+  out.json = {{"e", e}, {"launches", launches}, {"collapsed", R}, {"tau", taus}, {"k_equiv", kq}, {"n", n_mean}, {"n_error", n_err},
+              {"samples", samples}, {"particles", particles}, {"geometric_closer", geometric_closer}, {"fitted", fitted},
+              {"median_q", std::exp(median(ln_q))}, {"median_beta", median(beta)}};
+  nlohmann::json lj = nlohmann::json::array();
+  for (const auto& l : local) lj.push_back({{"k1", l.k1}, {"k2", l.k2}, {"alpha", l.alpha}, {"error", l.error}});
+  out.json["local"] = lj;
+  std::string& md = out.markdown;
+  md = fmt::format("\n### Hard spheres, e = {:g}: {} of {} launches collapse\n\n", e, R, launches);
+  if (R < 2) {
+    md += "Too few collapses to measure.\n";
+    return out;
+  }
+  md += fmt::format("Particles touched by the last {} collisions before the collapse was detected: mean {}, from {:g} to {:g}.\n\n", last,
+                    plus_minus(p_mean, p_err, 1), pmin, pmax);
+  md += fmt::format("Approach to the collapse, tau_n = t* - t_n over 1e-8 ≤ tau_n ≤ 1e-2: in {} of {} launches a geometric sequence "
+                    "(ln tau_n linear in n) fits with a smaller rms residual than a power of n (ln tau_n linear in ln n); median "
+                    "ratio per collision q = {:.4f}, median exponent β = {:.2f} (intervals ~ n^-β).\n\n",
+                    geometric_closer, fitted, std::exp(median(ln_q)), median(beta));
+  md += "Collisions n(τ) before the sequence comes within τ of the collapse, with the k whose τ_c is τ:\n\n"
+        "| τ | k with τ_c = τ | n(τ) | local exponent d ln n / d ln k to the next τ |\n|---|---|---|---|\n";
+  for (std::size_t i = 0; i < taus.size(); ++i)
+    md += fmt::format("| {:.3g} | {:.3g} | {} | {} |\n", taus[i], kq[i], plus_minus(n_mean[i], n_err[i], 1),
+                      i < local.size() ? plus_minus(local[i].alpha, local[i].error, 3) : "");
+  bool positive = true;
+  for (std::size_t i = 0; i < taus.size(); ++i) positive = positive && n_err[i] > 0 && n_mean[i] > 0;
+  if (positive) {
+    std::vector<double> kk(kq.begin(), kq.end());
+    const analysis::FormComparison c = analysis::compare_asymptotic_forms(kk, n_mean, C);
+    md += "\nForms of n against k_τ (all τ, covariance from the launches):";
+    for (const auto& f : c.fits)
+      md += fmt::format(" {}: χ² = {:.1f} / {}, weight {:.2f};", analysis::form_name(f.form), f.chi2, f.dof, f.akaike_weight);
+    md += fmt::format(" AICc prefers {}.\n", analysis::form_name(c.fits[static_cast<std::size_t>(c.best_aicc)].form));
+    out.json["best_form"] = analysis::form_name(c.fits[static_cast<std::size_t>(c.best_aicc)].form);
+  }
+  return out;
+}
+
+struct SoftLaunch {
+  double n = 0, events = 0, in_events = 0, particles = 0;  // particles: summed over events
+};
+
+HardOutcome soft_sequences(double e, const std::vector<double>& ks, int launches, const ReproduceFlags& o) {
+  HardOutcome out;
+  out.json = {{"e", e}, {"launches", launches}, {"k", ks}, {"per_k", nlohmann::json::array()}};
+  std::vector<double> edges;  // gap / tau_c, half decades from 1e-2 to 1e8
+  for (int j = -4; j <= 16; ++j) edges.push_back(std::pow(10.0, 0.5 * j));
+  std::string& md = out.markdown;
+  md = fmt::format("\n### Soft spheres, e = {:g}, {} launches per k\n\n| k | n_tot | collapse events per launch | collisions per event | "
+                   "particles per event | collisions in events | overlapping contacts |\n|---|---|---|---|---|---|---|\n",
+                   e, launches);
+  std::vector<double> ev_mean, ev_err, per_mean, per_err;
+  for (double k : ks) {
+    CollapseSpec spec;
+    spec.params.N = kN;
+    spec.params.e = e;
+    spec.params.k = k;
+    spec.params.g = 0.0;
+    spec.realizations = launches;
+    spec.threads = o.threads;
+    const double tau_c = contact_law(spec.params).tau_c;
+    std::vector<SoftLaunch> L;
+    std::vector<double> gap_hist(edges.size() + 1, 0.0), pair_hist(edges.size() + 1, 0.0), part_hist(kN + 1, 0.0);
+    double overlapping = 0, gaps_total = 0;
+    const auto bin = [&](std::vector<double>& h, double g) {
+      if (g <= 0) return;
+      const auto it = std::upper_bound(edges.begin(), edges.end(), g / tau_c);
+      h[static_cast<std::size_t>(it - edges.begin())] += 1;
+    };
+    if (!o.quiet) fmt::print(stderr, "reproduce intervals: N = {}, e = {:g}, k = {:g}, {} launches\n", kN, e, k, launches);
+    run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
+      const std::vector<Collision> seq = to_sequence(recs);
+      SoftLaunch s;
+      s.n = static_cast<double>(seq.size());
+      for (double g : analysis::system_gaps(seq)) {
+        gaps_total += 1;
+        if (g <= 0) overlapping += 1;
+        bin(gap_hist, g);
+      }
+      for (double g : analysis::pair_gaps(seq)) bin(pair_hist, g);
+      for (const auto& ev : analysis::collapse_events(seq, kEventGap * tau_c, kEventMin)) {
+        s.events += 1;
+        s.in_events += static_cast<double>(ev.collisions);
+        s.particles += ev.particles;
+        part_hist[static_cast<std::size_t>(std::min(ev.particles, kN))] += 1;
+      }
+      L.push_back(s);
+    });
+    std::vector<double> n, events, frac;
+    double in_sum = 0, ev_sum = 0, p_sum = 0;
+    for (const auto& s : L) {
+      n.push_back(s.n), events.push_back(s.events), frac.push_back(s.n > 0 ? s.in_events / s.n : 0.0);
+      in_sum += s.in_events, ev_sum += s.events, p_sum += s.particles;
+    }
+    // Collisions per event as a ratio of sums; its error by the delta method over the launches.
+    const double per = ev_sum > 0 ? in_sum / ev_sum : 0.0;
+    std::vector<double> lin;
+    for (const auto& s : L) lin.push_back(ev_sum > 0 ? (s.in_events - per * s.events) * static_cast<double>(L.size()) / ev_sum : 0.0);
+    const auto [nm, ne] = mean_error(n);
+    const auto [em, ee] = mean_error(events);
+    const auto [fm, fe] = mean_error(frac);
+    const double pe = mean_error(lin).second;
+    ev_mean.push_back(em), ev_err.push_back(ee), per_mean.push_back(per), per_err.push_back(pe);
+    md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {:.3f} |\n", power_of_ten_text(k), plus_minus(nm, ne, 1), plus_minus(em, ee, 1),
+                      plus_minus(per, pe, 2), ev_sum > 0 ? p_sum / ev_sum : 0.0, plus_minus(fm, fe, 3), gaps_total > 0 ? overlapping / gaps_total : 0.0);
+    for (double& h : gap_hist) h /= std::max(1.0, gaps_total);
+    out.json["per_k"].push_back({{"k", k}, {"tau_c", tau_c}, {"n_tot", nm}, {"n_tot_error", ne}, {"events", em}, {"events_error", ee},
+                                 {"per_event", per}, {"per_event_error", pe}, {"fraction_in_events", fm}, {"gap_hist", gap_hist},
+                                 {"pair_gap_hist", pair_hist}, {"particles_hist", part_hist}, {"overlapping", gaps_total > 0 ? overlapping / gaps_total : 0.0}});
+  }
+  out.json["edges"] = edges;
+  if (ks.size() >= 2) {
+    md += "\nLocal exponents d ln / d ln k between successive k (errors as if independent):\n\n| k1 → k2 | events per launch | collisions per event |\n|---|---|---|\n";
+    for (std::size_t i = 0; i + 1 < ks.size(); ++i) {
+      const double span = std::log(ks[i + 1] / ks[i]);
+      const auto exponent = [&](const std::vector<double>& m, const std::vector<double>& er) {
+        return plus_minus(std::log(m[i + 1] / m[i]) / span, std::hypot(er[i] / m[i], er[i + 1] / m[i + 1]) / span, 3);
+      };
+      md += fmt::format("| {} → {} | {} | {} |\n", power_of_ten_text(ks[i]), power_of_ten_text(ks[i + 1]), exponent(ev_mean, ev_err),
+                        exponent(per_mean, per_err));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o) {
+  const int hard_launches = o.smoke() ? 20 : o.paper() ? 1000 : 200;
+  const int soft_launches = o.smoke() ? 4 : o.paper() ? 200 : 40;
+  const std::vector<double> ks = o.smoke() ? std::vector<double>{1e5, 1e6} : o.paper() ? std::vector<double>{1e6, 1e8, 1e10, 1e12}
+                                                                                         : std::vector<double>{1e6, 1e8, 1e10};
+  nlohmann::json plot = {{"N", kN}, {"event_gap", kEventGap}, {"hard", nlohmann::json::array()}, {"soft", nlohmann::json::array()}};
+  std::string md = fmt::format(
+      "Command: `granchain reproduce --figure intervals --preset {}`. Free-space launches of Sec. III.D at N = {} (a = v0 = 1, dv0 = 0.1). "
+      "Hard spheres: the engine's collapse watch (1000 collisions within 1e-9) marks the collapse; t* is the time of the last "
+      "collision. Soft spheres: exact engine, stop rule `ends`; a collapse event is a run of at least {} collisions whose successive "
+      "gaps (next contact begins − last one ended) are below {:g} τ_c. Figure: `intervals.png` (and .pdf).\n",
+      o.preset, kN, kEventMin, kEventGap);
+  for (double e : {0.3, 0.5}) {
+    HardOutcome h = hard_sequences(e, hard_launches, o);
+    HardOutcome s = soft_sequences(e, ks, soft_launches, o);
+    plot["hard"].push_back(h.json);
+    plot["soft"].push_back(s.json);
+    md += h.markdown + s.markdown;
+  }
+  return {kExitOk, md, draw_figure(o, "intervals", plot, "intervals.py")};
+}
+
+}  // namespace granchain
