@@ -9,7 +9,9 @@ Usage: /usr/bin/python3 plots/intervals.py intervals.json PREFIX   -> PREFIX.png
 (c) collisions n(tau) before the hard sequence comes within tau of the collapse, against the k
     whose tau_c is tau, beside the soft spheres' n_tot(k);
 (d) gaps between successive collisions in units of tau_c, soft spheres, one curve per k (a scaling
-    plot: curves that coincide mean the sequences end at the cut-off the same way at every k);
+    plot: curves that coincide mean the sequences end at the cut-off the same way at every k), and
+    the gaps between successive collisions of one pair at the largest k (dashed); overlapping
+    contacts (negative gaps) are counted in the total but not drawn;
 (e) collapse events per launch and collisions per event against k;
 (f) particles per collapse event (soft, largest k) and in the final hard-sphere collapse.
 """
@@ -62,6 +64,10 @@ def main(argv):
                 h = np.array(p["gap_hist"], dtype=float)[1:-1]
                 ax[3].loglog(centres, h / np.log10(edges[1:] / edges[:-1]), "o-", ms=3, lw=0.8, color=plt.cm.viridis(i / max(1, len(per_k) - 1)),
                              label=r"$k = 10^{%d}$" % round(np.log10(p["k"])))
+            pair = np.array(per_k[-1]["pair_gap_hist"], dtype=float)
+            if pair.sum() > 0:
+                ax[3].loglog(centres, pair[1:-1] / pair.sum() / np.log10(edges[1:] / edges[:-1]), "k--", lw=0.8,
+                             label=r"same pair, $k = 10^{%d}$" % round(np.log10(per_k[-1]["k"])))
             ax[3].set_title(r"(d) soft, $e = %g$: gaps between collisions" % s["e"], fontsize=10)
         last = per_k[-1]
         ph = np.array(last["particles_hist"], dtype=float)
