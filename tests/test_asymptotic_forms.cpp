@@ -37,6 +37,22 @@ const std::function<double(double)> kLog = [](double k) { return 10.0 + 20.0 * s
 const std::function<double(double)> kLogSquared = [](double k) { return 10.0 + 5.0 * std::log(k) + 0.8 * std::pow(std::log(k), 2); };
 const std::function<double(double)> kPowerLog = [](double k) { return 30.0 * std::pow(k, 0.25) * std::pow(std::log(k), -1.5); };
 
+// Mean chi^2 and the mean and standard deviation of the exponent's pull over repetitions.
+struct PullStats {
+  int count = 0;
+  double chi2 = 0, pull = 0, pull2 = 0;
+  void add(const FormFit& f, double alpha) {
+    ++count;
+    chi2 += f.chi2;
+    const double z = (f.param[1] - alpha) / f.error[1];
+    pull += z;
+    pull2 += z * z;
+  }
+  double mean_chi2() const { return chi2 / count; }
+  double mean_pull() const { return pull / count; }
+  double pull_spread() const { return std::sqrt(pull2 / count - mean_pull() * mean_pull()); }
+};
+
 int picked(const std::function<double(double)>& y, AsymptoticForm truth, int reps, std::uint64_t seed, double rel = 0.01) {
   Rng rng(seed);
   int hits = 0;
@@ -70,19 +86,15 @@ TEST(AsymptoticForms, EachGeneratingFormIsRecognised) {
 // standard deviation within 1 +- 0.15.
 TEST(AsymptoticForms, ChiSquareAndExponentPullsFollowTheirDistributions) {
   Rng rng(21);
-  const int reps = 400;
-  double chi2 = 0, pull = 0, pull2 = 0;
-  for (int r = 0; r < reps; ++r) {
+  PullStats st;
+  for (int r = 0; r < 400; ++r) {
     const FormFit f = compare_asymptotic_forms(synthetic(kPower, 0.01, rng)).fits[0];
     ASSERT_EQ(f.form, AsymptoticForm::PowerLaw);
-    chi2 += f.chi2 / reps;
-    const double z = (f.param[1] - 0.2) / f.error[1];
-    pull += z / reps;
-    pull2 += z * z / reps;
+    st.add(f, 0.2);
   }
-  EXPECT_NEAR(chi2, 8.0, 0.8);
-  EXPECT_NEAR(pull, 0.0, 0.2);
-  EXPECT_NEAR(std::sqrt(pull2 - pull * pull), 1.0, 0.15);
+  EXPECT_NEAR(st.mean_chi2(), 8.0, 0.8);
+  EXPECT_NEAR(st.mean_pull(), 0.0, 0.2);
+  EXPECT_NEAR(st.pull_spread(), 1.0, 0.15);
 }
 
 // Points that share a random part (the same launches at every k): y_i = y(k_i)(1 + 0.01 z_i +
@@ -92,9 +104,8 @@ TEST(AsymptoticForms, CorrelatedPointsAreFittedWithTheirCovariance) {
   Rng rng(31);
   const std::vector<double> k = k_grid();
   const auto n = static_cast<Eigen::Index>(k.size());
-  const int reps = 400;
-  double chi2 = 0, pull = 0, pull2 = 0;
-  for (int r = 0; r < reps; ++r) {
+  PullStats st;
+  for (int r = 0; r < 400; ++r) {
     const double u = rng.normal();
     std::vector<double> y;
     Eigen::MatrixXd C(n, n);
@@ -104,15 +115,11 @@ TEST(AsymptoticForms, CorrelatedPointsAreFittedWithTheirCovariance) {
       for (Eigen::Index j = 0; j < n; ++j)
         C(i, j) = 1e-4 * yi * kPower(k[static_cast<std::size_t>(j)]) * (i == j ? 2.0 : 1.0);
     }
-    const FormFit f = compare_asymptotic_forms(k, y, C).fits[0];
-    chi2 += f.chi2 / reps;
-    const double z = (f.param[1] - 0.2) / f.error[1];
-    pull += z / reps;
-    pull2 += z * z / reps;
+    st.add(compare_asymptotic_forms(k, y, C).fits[0], 0.2);
   }
-  EXPECT_NEAR(chi2, 8.0, 0.8);
-  EXPECT_NEAR(pull, 0.0, 0.2);
-  EXPECT_NEAR(std::sqrt(pull2 - pull * pull), 1.0, 0.15);
+  EXPECT_NEAR(st.mean_chi2(), 8.0, 0.8);
+  EXPECT_NEAR(st.mean_pull(), 0.0, 0.2);
+  EXPECT_NEAR(st.pull_spread(), 1.0, 0.15);
 }
 
 TEST(AsymptoticForms, AkaikeWeightsSumToOneAndBadInputIsRefused) {

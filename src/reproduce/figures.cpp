@@ -46,6 +46,17 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
   return all;
 }
 
+CollapseSpec free_space_spec(int N, double e, double k, int launches, const ReproduceFlags& o) {
+  CollapseSpec spec;
+  spec.params.N = N;
+  spec.params.e = e;
+  spec.params.k = k;
+  spec.params.g = 0.0;
+  spec.realizations = launches;
+  spec.threads = o.threads;
+  return spec;
+}
+
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
   ResultsStore store(o.db);
   if (std::optional<CollapseResult> stored = store.find_collapse(spec)) return *stored;

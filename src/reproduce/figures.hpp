@@ -54,6 +54,9 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
 // line on stderr unless quiet) and stored. Throws StoreError or UnphysicalStateError.
 struct CollapseSpec;
 struct CollapseResult;
+// The free-space launches of Sec. III.D (defaults of granchain collapse: exact engine, a = v0 = 1,
+// dv0 = 0.1, stop rule ends, seed 1) at N, e, k, run on o.threads.
+CollapseSpec free_space_spec(int N, double e, double k, int launches, const ReproduceFlags& o);
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label);
 
 // The analysis (`granchain analyze`) of exactly these points as stored, fits over k >= k_min.

@@ -32,14 +32,7 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
   for (const Series& s : series) {
     std::vector<CollapseResult> results;
     for (double k : parse_value_list(s.k, "--k")) {
-      CollapseSpec spec;
-      spec.params.N = s.N;
-      spec.params.e = s.e;
-      spec.params.k = k;
-      spec.params.g = 0.0;
-      spec.realizations = s.realizations;
-      spec.threads = o.threads;
-      results.push_back(stored_or_run_collapse(spec, o, "fig10"));
+      results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.realizations, o), o, "fig10"));
     }
     nlohmann::json js = {{"N", s.N}, {"e", s.e}, {"k", nlohmann::json::array()}, {"n_tot", nlohmann::json::array()},
                          {"error", nlohmann::json::array()}};

@@ -113,7 +113,7 @@ std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
   for (int N : o.smoke() ? std::vector<int>{10, 25} : std::vector<int>{10, 25, 50})
     for (double e : {0.3, 0.5}) {
       const int launches = o.smoke() ? 10 : o.paper() ? (N == 10 ? 2000 : N == 25 ? 1000 : 200) : (N == 10 ? 400 : N == 25 ? 100 : 40);
-      s.push_back({N, e, o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e14:x10" : "1e4:1e10:x10", launches});
+      s.push_back({N, e, o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e13:x10" : "1e4:1e10:x10", launches});
     }
   return s;
 }
@@ -132,14 +132,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
   for (const FreeSeries& s : free_series(o)) {
     std::vector<CollapseResult> results;
     for (double k : parse_value_list(s.k, "--k")) {
-      CollapseSpec spec;
-      spec.params.N = s.N;
-      spec.params.e = s.e;
-      spec.params.k = k;
-      spec.params.g = 0.0;
-      spec.realizations = s.launches;
-      spec.threads = o.threads;
-      results.push_back(stored_or_run_collapse(spec, o, "limit-free"));
+      results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.launches, o), o, "limit-free"));
     }
     const std::size_t nk = results.size();
     std::vector<double> k, y, err;

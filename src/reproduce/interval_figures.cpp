@@ -65,14 +65,8 @@ struct HardOutcome {
 HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
   std::vector<double> taus;
   for (int j = 2; j <= 16; ++j) taus.push_back(std::pow(10.0, -0.5 * j));  // 1e-1 .. 1e-8
-  CollapseSpec spec;
-  spec.params.N = kN;
-  spec.params.e = e;
-  spec.params.k = std::numeric_limits<double>::infinity();
-  spec.params.g = 0.0;
+  CollapseSpec spec = free_space_spec(kN, e, std::numeric_limits<double>::infinity(), launches, o);
   spec.engine.name = "hard";
-  spec.realizations = launches;
-  spec.threads = o.threads;
   const std::size_t last = spec.engine.hard.collapse_collisions;
   std::vector<std::vector<double>> counts;  // per collapsed launch, n(tau)
   std::vector<double> ln_q, beta, particles;
@@ -182,13 +176,7 @@ HardOutcome soft_sequences(double e, const std::vector<double>& ks, int launches
                    e, launches);
   std::vector<double> ev_mean, ev_err, per_mean, per_err;
   for (double k : ks) {
-    CollapseSpec spec;
-    spec.params.N = kN;
-    spec.params.e = e;
-    spec.params.k = k;
-    spec.params.g = 0.0;
-    spec.realizations = launches;
-    spec.threads = o.threads;
+    const CollapseSpec spec = free_space_spec(kN, e, k, launches, o);
     const double tau_c = contact_law(spec.params).tau_c;
     std::vector<SoftLaunch> L;
     std::vector<double> gap_hist(edges.size() + 1, 0.0), pair_hist(edges.size() + 1, 0.0), part_hist(kN + 1, 0.0);
