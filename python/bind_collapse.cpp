@@ -181,6 +181,7 @@ py::dict collapse_dict(const CollapseResult& r, const std::vector<CollisionRecor
   d["collisions"] = r.collisions;
   d["grazing_contacts"] = r.grazing_contacts;
   d["held_contacts"] = r.held_contacts;
+  d["one_body"] = r.one_body;
   d["wall_seconds"] = r.wall_seconds;
   py::dict per;
   const auto& o = r.outcomes;
@@ -191,6 +192,7 @@ py::dict collapse_dict(const CollapseResult& r, const std::vector<CollisionRecor
   per["t_stop"] = column<double>(o, [](const RealizationOutcome& x) { return x.t_stop; });
   per["grazing_contacts"] = column<std::int64_t>(o, [](const RealizationOutcome& x) { return x.grazing_contacts; });
   per["held_contacts"] = column<std::int64_t>(o, [](const RealizationOutcome& x) { return x.held_contacts; });
+  per["one_body"] = column<bool>(o, [](const RealizationOutcome& x) { return x.one_body; });
   d["per_realization"] = per;
   if (recorded) {
     py::dict c;  // one entry per collision, as `granchain collapse --events` writes them

@@ -166,3 +166,18 @@ TEST(SineTransform, EqualsTheDenseSineProductAndIsItsOwnInverse) {
   EXPECT_NE(ClusterModeTable(150, 1e6, 100.0).transform, nullptr);
   EXPECT_EQ(ClusterModeTable(25, 1e6, 100.0).transform, nullptr);
 }
+
+// A mode come to rest within round-off (amplitudes ~1e-163, squares below the smallest double):
+// its amplitude stays positive and equal to the exact one, for every kind of damping, so the
+// engine's bounds never claim a moving cluster is at rest.
+TEST(ModeConstants, AmplitudeOfAStateNearRestDoesNotUnderflow) {
+  for (double beta : {0.05, 2.0, 5.0}) {  // omega0 = 2: under-, critically, over-damped
+    const ModeConstants mc(beta, 4.0);
+    for (double scale : {1.0, 1e-163, 1e-300}) {
+      const double y = 3 * scale, yd = -4 * scale;
+      const double a = mc.amplitude(y, yd);
+      EXPECT_GT(a, 0.0) << "beta " << beta << ", scale " << scale;
+      EXPECT_NEAR(a / scale, mc.amplitude(3.0, -4.0), 1e-12 * mc.amplitude(3.0, -4.0)) << "beta " << beta << ", scale " << scale;
+    }
+  }
+}

@@ -140,3 +140,59 @@ TEST(CollapseRun, ChatteringPairsAreHeldAndEveryLaunchEnds) {
   EXPECT_GT(grazing, 0u);
   EXPECT_GT(held, 0u);
 }
+
+// At k = 1e14 launch 282 of N = 25, e = 0.5 turns the whole chain into one body: by t ~ 19 every
+// relative velocity is below 1e-17 and a cluster's mode amplitudes (~1e-163) underflowed when
+// squared, so its contacts never closed and the launch ran into t_max ("the stop rule did not
+// hold"). With amplitudes that cannot underflow (ModeConstants::amplitude) its contacts close; the
+// launch ends, by the stop rule or as one body, and conserves momentum to round-off.
+TEST(CollapseRun, AChainAtRestWithinRoundOffStillEnds) {
+  CollapseSpec spec;
+  spec.params.N = 25;
+  spec.params.e = 0.5;
+  spec.params.k = 1e14;
+  spec.params.g = 0.0;
+  const ChainState initial = collapse_initial_state(spec, 282);
+  auto engine = make_engine(spec.engine, spec.params, initial, nullptr);
+  struct Ends final : EventSink {
+    int open = 0;
+    void on_event(const Event& ev) override {
+      if (ev.kind == EventKind::ContactBegin) ++open;
+      if (ev.kind == EventKind::ContactEnd && --open == 0) request_stop();
+    }
+  } sink;
+  for (;;) {
+    sink.clear_stop();
+    engine->advance_to(spec.t_max, sink);
+    ASSERT_TRUE(sink.stop_requested()) << "no end before t_max at t = " << engine->time();
+    const ChainState& s = engine->state();
+    if (sink.open == 0 && (s.v.back() > s.v.front() || moves_as_one_body(spec, s))) break;
+  }
+  double p0 = 0, p1 = 0, scale = 0;
+  for (int i = 0; i < 25; ++i) {
+    p0 += initial.v[i];
+    p1 += engine->state().v[i];
+    scale += std::abs(initial.v[i]);
+  }
+  EXPECT_NEAR(p1, p0, 1e-12 * scale);
+  EXPECT_LT(engine->time(), 100.0);
+}
+
+// The one-body test: velocities equal to within 1e-13 of the speeds end a launch; a relative
+// velocity of 1e-12 of them does not; on a wall a body moving toward it does not.
+TEST(CollapseRun, OneBodyMeansEveryRelativeVelocityBelowResolution) {
+  CollapseSpec spec;
+  spec.params.N = 3;
+  ChainState s;
+  s.z = {0, 2, 4};
+  s.v = {0.0035, std::nextafter(0.0035, 1.0), 0.0035 * (1 - 5e-14)};
+  EXPECT_TRUE(moves_as_one_body(spec, s));
+  s.v = {1.0, 1.0 + 1e-12, 1.0};
+  EXPECT_FALSE(moves_as_one_body(spec, s));
+  s.v = {0.0, 0.0, 0.0};
+  EXPECT_TRUE(moves_as_one_body(spec, s));
+  s.v = {-0.5, -0.5, -0.5};
+  EXPECT_TRUE(moves_as_one_body(spec, s));
+  spec.setup = CollapseSetup::Wall;
+  EXPECT_FALSE(moves_as_one_body(spec, s));
+}

@@ -274,6 +274,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
           if (r.grazing_contacts > 0)
             fmt::print("{:>19} ({} of {} collisions began below the engine's resolution, {} of them held; docs/engines.md)\n",
                        "", r.grazing_contacts, r.collisions, r.held_contacts);
+          if (r.one_body > 0)
+            fmt::print("{:>19} ({} of {} launches ended as one body: every relative velocity below 1e-13 of the speeds; docs/collapse.md)\n",
+                       "", r.one_body, base.realizations);
           std::fflush(stdout);
         }
       }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <condition_variable>
 #include <exception>
@@ -75,6 +76,17 @@ bool stop_rule_holds(const CollapseSpec& spec, const ChainState& s) {
   return true;
 }
 
+}  // namespace
+
+bool moves_as_one_body(const CollapseSpec& spec, const ChainState& s) {
+  if (spec.setup == CollapseSetup::Wall && s.v[0] < 0) return false;
+  double lo = s.v[0], hi = s.v[0], fastest = 0;
+  for (double v : s.v) lo = std::min(lo, v), hi = std::max(hi, v), fastest = std::max(fastest, std::abs(v));
+  return hi - lo <= 1e-13 * fastest;
+}
+
+namespace {
+
 bool any_overlap(const ChainState& s, double d) {
   for (std::size_t i = 0; i + 1 < s.z.size(); ++i)
     if (s.z[i + 1] - s.z[i] < d) return true;
@@ -110,6 +122,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
   auto engine = make_engine(spec.engine, p, initial, floor);
   CollapseObserver obs(p.N, r, keep_records, p.e);
   bool done = !any_overlap(initial, p.d) && stop_rule_holds(spec, initial);
+  const bool hard = is_hard_sphere_engine(spec.engine.name);
   try {
     while (!done) {
       obs.clear_stop();
@@ -122,7 +135,11 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
                                    fmt::format("realisation {}: the stop rule did not hold by t = {:g} "
                                                "({} collisions)", r, spec.t_max, obs.outcome.n_tot()));
       }
-      done = obs.open_contacts() == 0 && stop_rule_holds(spec, engine->state());
+      if (obs.open_contacts() != 0) continue;
+      done = stop_rule_holds(spec, engine->state());
+      // Soft spheres only: hard spheres that become one body are an inelastic collapse, which
+      // their engine's collapse watch reports.
+      if (!done && !hard && moves_as_one_body(spec, engine->state())) done = obs.outcome.one_body = true;
     }
     obs.outcome.t_stop = engine->time();
     obs.outcome.grazing_contacts = engine->counters().grazing_contacts;
@@ -214,6 +231,7 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
     res.collisions += o.n_tot();
     res.grazing_contacts += o.grazing_contacts;
     res.held_contacts += o.held_contacts;
+    res.one_body += o.one_body;
     if (o.collapsed) {
       ++res.collapsed;
       continue;

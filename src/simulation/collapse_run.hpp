@@ -11,6 +11,9 @@
 //          total number of collisions of the launch. A launch also ends when no event happens
 //          until t_max (1e7) with no contact open: a pair approaching that slowly (by round-off,
 //          after a wall or a collapse) is not waited for.
+// Under either rule a soft-sphere launch also ends, with no contact open, when every relative
+// velocity is below 1e-13 of the speeds (the exact engine's resolution): the chain moves as one
+// body. (Hard spheres that become one body collapse, and the collapse watch reports it.)
 // A hard-sphere realisation that collapses (infinitely many collisions) is counted as collapsed
 // and left out of the n_tot average; the fraction is reported.
 #include <cstdint>
@@ -59,6 +62,9 @@ struct RealizationOutcome {
   // Exact engine, contacts below its resolution (EngineCounters): grazing contacts, and those of
   // them held longer because their pair kept grazing.
   std::uint64_t grazing_contacts = 0, held_contacts = 0;
+  // Ended because every relative velocity fell below the engine's resolution (1e-13 of the speeds)
+  // before the stop rule held: the chain moves as one body (seen at k >= 1e14, docs/collapse.md).
+  bool one_body = false;
   std::uint64_t n_tot() const { return particle_collisions + wall_hits; }
 };
 
@@ -75,6 +81,7 @@ struct CollapseResult {
   // Over all realisations: collisions counted, and the contacts among them below the exact
   // engine's resolution (see RealizationOutcome).
   std::uint64_t collisions = 0, grazing_contacts = 0, held_contacts = 0;
+  int one_body = 0;  // launches that ended as one body (RealizationOutcome::one_body)
 };
 
 // Called with each realisation's collisions in order, realisations in order, from the calling
@@ -102,6 +109,12 @@ struct KSlope {
   double alpha_paired_error = 0;
 };
 KSlope k_slope(const CollapseResult& a, const CollapseResult& b);
+
+// Every relative velocity below the exact engine's resolution (1e-13 of the speeds, the test that
+// makes a contact grazing): the chain moves as one body, no pair approaches at a speed the doubles
+// resolve, and waiting for the stop rule would wait on round-off. On a wall only when moving away
+// from it (v_1 >= 0).
+bool moves_as_one_body(const CollapseSpec& spec, const ChainState& s);
 
 // The initial state of realisation r.
 ChainState collapse_initial_state(const CollapseSpec& spec, int r);

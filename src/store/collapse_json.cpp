@@ -44,7 +44,8 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
             {"particle_collisions", pp},
             {"wall_hits", wall},
             {"grazing_contacts", r.grazing_contacts},
-            {"held_contacts", r.held_contacts}}},
+            {"held_contacts", r.held_contacts},
+            {"one_body", r.one_body}}},
           {"cost", {{"wall_seconds", r.wall_seconds}, {"threads", s.threads}}}};
 }
 

@@ -39,14 +39,19 @@ struct ModeConstants {
   // y(t), y'(t) from y(0) = y0, y'(0) = v0, exactly.
   void evolve(double y0, double v0, double t, double& y, double& yd) const;
   double acceleration(double y, double yd) const { return -2.0 * beta * yd - omega0_sq * y; }
-  // The amplitude A of the state (y, y'): |y^(n)| <= bound[n] A from now on.
+  // The amplitude A of the state (y, y'): |y^(n)| <= bound[n] A from now on. The sum of squares
+  // underflows for amplitudes below ~1e-154 (a chain come to rest within round-off): there the
+  // slower std::hypot keeps A > 0 whenever the state is not exactly zero.
   double amplitude(double y, double yd) const {
     if (kind == ModeKind::Under) {
       const double q = (yd + beta * y) / w;
-      return std::sqrt(y * y + q * q);
+      const double s = y * y + q * q;
+      return s >= kNoUnderflow ? std::sqrt(s) : std::hypot(y, q);
     }
-    return std::sqrt(yd * yd + omega0_sq * y * y);
+    const double s = yd * yd + omega0_sq * y * y;
+    return s >= kNoUnderflow ? std::sqrt(s) : std::hypot(yd, std::sqrt(omega0_sq) * y);
   }
+  static constexpr double kNoUnderflow = 1e-290;  // sums of squares above it lost nothing to underflow
 };
 
 // y'' + 2 beta y' + omega0^2 y = 0 solved exactly from y(0), y'(0).

@@ -118,7 +118,8 @@ void ExactEngine::form_cluster(int lo, int hi, double t, const double* x, const 
     for (int j = 0; j < tab.M; ++j) {
       const ModeConstants& mc = tab.modes[j];
       const double y = y0_[lo + j], yd = yd0_[lo + j];
-      amp0_[lo + j] = std::sqrt((yd * yd + mc.omega0_sq * y * y) / mc.omega0_sq);
+      const double s = yd * yd + mc.omega0_sq * y * y;  // underflows for a cluster at rest within round-off
+      amp0_[lo + j] = s >= ModeConstants::kNoUnderflow ? std::sqrt(s / mc.omega0_sq) : std::hypot(yd / std::sqrt(mc.omega0_sq), y);
     }
   }
 }
