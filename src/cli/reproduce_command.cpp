@@ -75,7 +75,7 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  limit-free               free-space n_tot(k) at N = 10, 25, 50, e = 0.3, 0.5: local exponents, candidate forms\n"
       "  limit-driven             driven n_coll(k) at N = 25, e = 0.1..0.5: local exponents, candidate forms\n"
       "  intervals                collision sequences of N = 25 collapses: hard-sphere approach, soft collapse events\n"
-      "  beyond                   these three, and report-beyond.md (quick: k to 1e9/1e10; paper: free to 1e14,\n"
+      "  beyond                   these three, and report-beyond.md (quick: k to 1e9/1e10; paper: free to 1e13,\n"
       "                           driven to 1e12 with T = 1e4)\n"
       "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and 100 for N >= 50; each figure\n"
       "under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"

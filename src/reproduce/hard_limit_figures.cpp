@@ -113,7 +113,7 @@ std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
   for (int N : o.smoke() ? std::vector<int>{10, 25} : std::vector<int>{10, 25, 50})
     for (double e : {0.3, 0.5}) {
       const int launches = o.smoke() ? 10 : o.paper() ? (N == 10 ? 2000 : N == 25 ? 1000 : 200) : (N == 10 ? 400 : N == 25 ? 100 : 40);
-      s.push_back({N, e, o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e14:x10" : "1e4:1e10:x10", launches});
+      s.push_back({N, e, o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e13:x10" : "1e4:1e10:x10", launches});
     }
   return s;
 }
