@@ -22,6 +22,7 @@
 #include "config/exit_codes.hpp"
 #include "reproduce/figures.hpp"
 #include "simulation/collapse_run.hpp"
+#include "theory/collapse_theory.hpp"
 
 namespace granchain {
 
@@ -136,8 +137,14 @@ HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
     md += "Too few collapses to measure.\n";
     return out;
   }
-  md += fmt::format("Particles touched by the last {} collisions before the collapse was detected: mean {}, from {:g} to {:g}.\n\n", last,
-                    plus_minus(p_mean, p_err, 1), pmin, pmax);
+  int n_star = 3;  // the fewest free particles that can collapse at e: e_c(n) > e (Sec. III.B's estimate)
+  while (n_star < kN && theory::ec_free(n_star) <= e) ++n_star;
+  md += fmt::format("Particles touched by the last {} collisions before the collapse was detected: mean {}, from {:g} to {:g}. The "
+                    "fewest free particles that can collapse at this e, the least n with e_c(n) = tan²(π/4 (1 − 2/n)) > e "
+                    "(Sec. III.B): n* = {} (e_c({}) = {:.4f}{}).\n\n",
+                    last, plus_minus(p_mean, p_err, 1), pmin, pmax, n_star, n_star, theory::ec_free(n_star),
+                    n_star > 3 ? fmt::format(", e_c({}) = {:.4f}", n_star - 1, theory::ec_free(n_star - 1)) : "");
+  out.json["n_star"] = n_star;
   md += fmt::format("Approach to the collapse, tau_n = t* - t_n over 1e-8 ≤ tau_n ≤ 1e-2: in {} of {} launches a geometric sequence "
                     "(ln tau_n linear in n) fits with a smaller rms residual than a power of n (ln tau_n linear in ln n); median "
                     "ratio per collision q = {:.4f}, median exponent β = {:.2f} (intervals ~ n^-β).\n\n",
