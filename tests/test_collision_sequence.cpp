@@ -13,6 +13,22 @@
 using namespace granchain;
 using namespace granchain::analysis;
 
+namespace {
+
+// Free-space launches of hard spheres (Sec. III.D), on two threads.
+CollapseSpec hard_launches(int N, double e, int launches) {
+  CollapseSpec spec;
+  spec.params.N = N;
+  spec.params.e = e;
+  spec.params.g = 0.0;
+  spec.engine.name = "hard";
+  spec.realizations = launches;
+  spec.threads = 2;
+  return spec;
+}
+
+}  // namespace
+
 TEST(CollisionSequence, GapsPairsAndEventsOfAHandMadeSequence) {
   // Pairs 1, 2, 1 close together, a long flight, then 4, 5 close together, then 7 alone.
   const std::vector<Collision> c = {{0.0, 0.1, 1}, {0.15, 0.2, 2}, {0.22, 0.3, 1}, {5.0, 5.1, 4}, {5.12, 5.2, 5}, {9.0, 9.1, 7}};
@@ -66,12 +82,7 @@ TEST(CollisionSequence, GeometricAndPowerLawApproachesAreToldApart) {
 // and a power of n fits far worse.
 TEST(CollisionSequence, ThreeHardSpheresCollapseGeometrically) {
   for (double e : {0.03, 0.05}) {
-    CollapseSpec spec;
-    spec.params.N = 3;
-    spec.params.e = e;
-    spec.params.g = 0.0;
-    spec.engine.name = "hard";
-    spec.realizations = 20;
+    const CollapseSpec spec = hard_launches(3, e, 20);
     std::vector<std::vector<Collision>> seq(20);
     const CollapseResult r = run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
       for (const auto& x : recs) seq[static_cast<std::size_t>(x.realization)].push_back({x.t_begin, x.t_end, x.i});
@@ -96,13 +107,7 @@ TEST(CollisionSequence, HardSpheresCollapseWithTheFewestParticlesThatCan) {
   for (const auto& [e, n_star] : {std::pair{0.3, 6}, std::pair{0.5, 10}}) {
     ASSERT_LT(theory::ec_free(n_star - 1), e);
     ASSERT_GT(theory::ec_free(n_star), e);
-    CollapseSpec spec;
-    spec.params.N = 25;
-    spec.params.e = e;
-    spec.params.g = 0.0;
-    spec.engine.name = "hard";
-    spec.realizations = 50;
-    spec.threads = 2;
+    const CollapseSpec spec = hard_launches(25, e, 50);
     int launches = 0, geometric = 0;
     run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
       std::vector<Collision> seq;
