@@ -73,6 +73,10 @@ TEST(CollisionSequence, GeometricAndPowerLawApproachesAreToldApart) {
   EXPECT_EQ(collisions_before_remaining(geo, t_star, {1e-3})[0], 30.0);
   EXPECT_EQ(collisions_before_remaining(pow, t_star, {1e-3})[0], 99.0);  // n^-1.5 >= 1e-3 for n <= 100, tau exactly 1e-3 at n = 100 loses to round-off
   EXPECT_LT(fit_remaining_time(geo, t_star, 0.5, 1.0).points, 4);
+  // Two pairs alternating: each pair's interval shrinks by q^2 = 0.64 from one of its collisions
+  // to the next.
+  EXPECT_NEAR(mean_pair_log_ratio(geo, 0, 60), 2 * std::log(0.8), 1e-9);
+  EXPECT_TRUE(std::isnan(mean_pair_log_ratio(geo, 0, 3)));
 }
 
 // Three hard spheres below e_c(3) collapse with the interval of each pair shrinking by q per cycle

@@ -27,6 +27,22 @@ std::vector<double> pair_gaps(const std::vector<Collision>& c) {
   return g;
 }
 
+double mean_pair_log_ratio(const std::vector<Collision>& c, std::size_t first, std::size_t last) {
+  std::map<int, std::vector<const Collision*>> by_pair;
+  for (std::size_t n = first; n <= last && n < c.size(); ++n) by_pair[c[n].pair].push_back(&c[n]);
+  double sum = 0;
+  int pairs = 0;
+  for (const auto& [pair, list] : by_pair) {
+    if (list.size() < 3) continue;
+    double s = 0;
+    for (std::size_t j = 2; j < list.size(); ++j)
+      s += std::log((list[j]->t_begin - list[j - 1]->t_end) / (list[j - 1]->t_begin - list[j - 2]->t_end));
+    sum += s / static_cast<double>(list.size() - 2);
+    ++pairs;
+  }
+  return pairs > 0 ? sum / pairs : std::numeric_limits<double>::quiet_NaN();
+}
+
 int particles_involved(const std::vector<Collision>& c, std::size_t first, std::size_t last) {
   std::set<int> p;
   for (std::size_t n = first; n <= last && n < c.size(); ++n) {

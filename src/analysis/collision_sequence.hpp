@@ -20,6 +20,11 @@ struct Collision {
 std::vector<double> system_gaps(const std::vector<Collision>& c);
 // Free flight between successive collisions of the same pair, over all pairs.
 std::vector<double> pair_gaps(const std::vector<Collision>& c);
+// The mean over pairs of ln(g_(j+1) / g_j), g_j the successive gaps of one pair among collisions
+// first .. last (pairs with at least 3 collisions there): the log of the ratio by which a pair's
+// interval shrinks from one of its collisions to the next (ln q of Eq. deltat12 for three bodies).
+// NaN when no pair has 3 collisions in the range.
+double mean_pair_log_ratio(const std::vector<Collision>& c, std::size_t first, std::size_t last);
 // Distinct particles touched by collisions first .. last (inclusive; the wall is not a particle).
 int particles_involved(const std::vector<Collision>& c, std::size_t first, std::size_t last);
 
