@@ -31,5 +31,6 @@ void bind_run(py::module_& m);
 void bind_collapse(py::module_& m);
 void bind_theory(py::module_& m);
 void bind_store(py::module_& m);
+void bind_analysis(py::module_& m);
 
 }  // namespace granchain::python

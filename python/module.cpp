@@ -38,4 +38,5 @@ PYBIND11_MODULE(_granchain, m) {
   granchain::python::bind_collapse(m);
   granchain::python::bind_theory(m);
   granchain::python::bind_store(m);
+  granchain::python::bind_analysis(m);
 }

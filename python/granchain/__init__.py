@@ -6,8 +6,8 @@ run() and collapse() are the simulations of ``granchain run`` and ``granchain co
 same code, the same numbers for the same seed); their keyword arguments are the CLI's flags
 (dt_factor for --dt-factor), validated by the CLI's own code, so bad input raises ValueError with
 the message the CLI prints. Both release the GIL: threads run several at once. The theory
-functions are the closed forms of src/theory; Store and export() read a results store. See
-docs/python.md.
+functions are the closed forms of src/theory; Store and export() read a results store;
+compare_forms() and local_exponents() analyse a count against k. See docs/python.md.
 """
 
 import sys as _sys
@@ -21,6 +21,7 @@ from ._granchain import (  # noqa: F401  (the public API)
     UnphysicalStateError,
     __version__,
     collisions_slope_per_ln_k,
+    compare_forms,
     cushion_Nc_wall,
     ec3,
     ec_free,
@@ -31,6 +32,7 @@ from ._granchain import (  # noqa: F401  (the public API)
     elastic_column,
     f_shift,
     k_slope,
+    local_exponents,
     m_prime_star,
     m_star,
     ntot_slope_per_ln_k,
