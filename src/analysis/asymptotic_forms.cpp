@@ -1,5 +1,6 @@
 #include "analysis/asymptotic_forms.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -130,6 +131,41 @@ FormComparison compare_asymptotic_forms(const std::vector<DataPoint>& pts) {
     C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = pts[i].error * pts[i].error;
   }
   return compare_asymptotic_forms(k, y, C);
+}
+
+std::vector<double> means(const std::vector<std::vector<double>>& samples) {
+  if (samples.empty()) throw std::invalid_argument("means: no samples");
+  std::vector<double> m(samples[0].size(), 0.0);
+  for (const auto& s : samples) {
+    if (s.size() != m.size()) throw std::invalid_argument("means: samples of different lengths");
+    for (std::size_t i = 0; i < m.size(); ++i) m[i] += s[i];
+  }
+  for (double& x : m) x /= static_cast<double>(samples.size());
+  return m;
+}
+
+Eigen::MatrixXd covariance_of_means(const std::vector<std::vector<double>>& samples) {
+  if (samples.size() < 2) throw std::invalid_argument("covariance of means: at least 2 samples are needed");
+  const std::vector<double> m = means(samples);
+  const auto n = static_cast<Eigen::Index>(m.size());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& s : samples) {
+    const Eigen::VectorXd d = Eigen::Map<const Eigen::VectorXd>(s.data(), n) - Eigen::Map<const Eigen::VectorXd>(m.data(), n);
+    C += d * d.transpose();
+  }
+  const double R = static_cast<double>(samples.size());
+  return C / ((R - 1) * R);
+}
+
+std::vector<LocalExponent> local_exponents(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C) {
+  std::vector<LocalExponent> out;
+  for (std::size_t i = 0; i + 1 < k.size(); ++i) {
+    const auto a = static_cast<Eigen::Index>(i), b = a + 1;
+    const double span = std::log(k[i + 1] / k[i]);
+    const double var = C(a, a) / (y[i] * y[i]) + C(b, b) / (y[i + 1] * y[i + 1]) - 2 * C(a, b) / (y[i] * y[i + 1]);
+    out.push_back({k[i], k[i + 1], std::log(y[i + 1] / y[i]) / span, std::sqrt(std::max(0.0, var)) / span});
+  }
+  return out;
 }
 
 SlopeTrend slope_trend(const std::vector<LocalExponent>& local) {

@@ -51,6 +51,17 @@ FormComparison compare_asymptotic_forms(const std::vector<double>& k, const std:
 // Independent points (diagonal covariance from the errors).
 FormComparison compare_asymptotic_forms(const std::vector<DataPoint>& y_of_k);
 
+// The covariance of the means of several quantities measured on the same samples (the counts of
+// the same launches at every k): samples[r][i] is quantity i in sample r; C_ij = cov_r(x_i, x_j) / R
+// (sample covariance, R - 1 in its denominator). At least 2 samples, all of one length.
+Eigen::MatrixXd covariance_of_means(const std::vector<std::vector<double>>& samples);
+// The means of those quantities.
+std::vector<double> means(const std::vector<std::vector<double>>& samples);
+
+// Local exponents ln(y2/y1) / ln(k2/k1) between successive points whose means share random parts:
+// the error from the covariance, var = C11/y1^2 + C22/y2^2 - 2 C12/(y1 y2), over ln(k2/k1)^2.
+std::vector<LocalExponent> local_exponents(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C);
+
 // The local exponents' trend: alpha_j = a + s log10 k_j (k_j the geometric middle of each
 // interval), weighted by their errors; and the constant fit (one power law): its weighted mean and
 // the chi^2 deviate of the exponents about it. A slope s below zero by several errors is a drift.

@@ -122,6 +122,19 @@ StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, doubl
   return out;
 }
 
+std::pair<double, double> mean_and_error(const std::vector<double>& x) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (x.empty()) return {nan, nan};
+  double sum = 0;
+  for (double v : x) sum += v;
+  const double mean = sum / static_cast<double>(x.size());
+  if (x.size() < 2) return {mean, nan};
+  double ss = 0;
+  for (double v : x) ss += (v - mean) * (v - mean);
+  const double n = static_cast<double>(x.size());
+  return {mean, std::sqrt(ss / (n - 1) / n)};
+}
+
 double chi2_normal_deviate(double chi2, int dof) {
   if (dof <= 0) return 0.0;
   const double v = 2.0 / (9.0 * dof);

@@ -15,6 +15,7 @@
 // converged (the error bar is then a lower bound).
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace granchain {
@@ -72,6 +73,10 @@ StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, doubl
 
 // Largest power of two <= min(limit, n), at least 1.
 int power_of_two_bins(long long n, int limit);
+
+// Mean of independent values and its standard error (sample standard deviation / sqrt(n)),
+// two-pass; NaN where undefined (no value, or one value for the error).
+std::pair<double, double> mean_and_error(const std::vector<double>& x);
 
 // The normal deviate of a chi^2 with `dof` degrees of freedom (Wilson-Hilferty: (chi2/dof)^(1/3)
 // is nearly normal), about N(0, 1) when the chi^2 is what its errors predict; 0 without dof.

@@ -77,14 +77,16 @@ std::vector<double> collisions_before_remaining(const std::vector<Collision>& c,
 
 ShrinkFit fit_remaining_time(const std::vector<Collision>& c, double t_star, double tau_lo, double tau_hi) {
   std::vector<DataPoint> geo, pow;
+  ShrinkFit f;
   for (std::size_t n = 0; n < c.size(); ++n) {
     const double tau = t_star - c[n].t_begin;
     if (tau < tau_lo || tau > tau_hi) continue;
+    if (geo.empty()) f.first = n;
+    f.last = n;
     const double idx = static_cast<double>(n + 1);
     geo.push_back({idx, std::log(tau), 1.0});
     pow.push_back({std::log(idx), std::log(tau), 1.0});
   }
-  ShrinkFit f;
   f.points = static_cast<int>(geo.size());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (f.points < 4) {

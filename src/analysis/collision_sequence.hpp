@@ -49,6 +49,7 @@ std::vector<double> collisions_before_remaining(const std::vector<Collision>& c,
 // and the rms residual of ln tau_n of each; the smaller says which straight line the data follow.
 struct ShrinkFit {
   int points = 0;
+  std::size_t first = 0, last = 0;  // the collisions fitted (0-based, inclusive; tau_n falls with n)
   double ln_q = 0, ln_q_error = 0, rms_geometric = 0;
   double beta = 0, beta_error = 0, rms_power = 0;
 };

@@ -23,12 +23,6 @@ using analysis::LocalExponent;
 
 namespace {
 
-nlohmann::json local_json(const std::vector<LocalExponent>& local) {
-  nlohmann::json j = nlohmann::json::array();
-  for (const auto& l : local) j.push_back({{"k1", l.k1}, {"k2", l.k2}, {"alpha", l.alpha}, {"error", l.error}});
-  return j;
-}
-
 // The forms fitted to (k, y, covariance) for k >= k_fit: their JSON and a Markdown table with the
 // verdict. Fewer than 4 points: no fit, said so.
 struct FormsOutcome {
@@ -137,23 +131,15 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
     const std::size_t nk = results.size();
     std::vector<double> k, y, err;
     for (const auto& r : results) k.push_back(r.spec.params.k), y.push_back(r.n_tot_mean), err.push_back(r.n_tot_error);
-    // Covariance of the means across k from the launches (each launch at every k).
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(nk), static_cast<Eigen::Index>(nk));
-    const std::size_t R = results[0].outcomes.size();
-    for (std::size_t a = 0; a < nk; ++a)
-      for (std::size_t b = 0; b < nk; ++b) {
-        double sum = 0;
-        for (std::size_t r = 0; r < R; ++r)
-          sum += (static_cast<double>(results[a].outcomes[r].n_tot()) - y[a]) * (static_cast<double>(results[b].outcomes[r].n_tot()) - y[b]);
-        C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = sum / static_cast<double>((R - 1) * R);
-      }
-    std::vector<LocalExponent> local;
-    for (std::size_t i = 0; i + 1 < nk; ++i) {
-      const KSlope sl = k_slope(results[i], results[i + 1]);
-      local.push_back({sl.k1, sl.k2, sl.alpha, sl.alpha_paired_error});
-    }
+    // Each launch's counts at every k: their covariance across k, and from it the local exponents'
+    // errors (the launches are paired).
+    std::vector<std::vector<double>> per_launch(results[0].outcomes.size(), std::vector<double>(nk));
+    for (std::size_t i = 0; i < nk; ++i)
+      for (std::size_t r = 0; r < per_launch.size(); ++r) per_launch[r][i] = static_cast<double>(results[i].outcomes[r].n_tot());
+    const Eigen::MatrixXd C = analysis::covariance_of_means(per_launch);
+    const std::vector<LocalExponent> local = analysis::local_exponents(k, y, C);
     nlohmann::json js = {{"label", fmt::format("N = {}, e = {:g}", s.N, s.e)}, {"N", s.N}, {"e", s.e}, {"k", k}, {"y", y}, {"error", err},
-                         {"launches", s.launches}, {"local", local_json(local)}};
+                         {"launches", s.launches}, {"local", local_exponents_json(local)}};
     md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\n| k | n_tot | local α to the next k |\n|---|---|---|\n", s.N, s.e, s.launches);
     for (std::size_t i = 0; i < nk; ++i)
       md += fmt::format("| {} | {} | {} |\n", power_of_ten_text(k[i]), plus_minus(y[i], err[i], 1),
@@ -193,7 +179,7 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
       for (const auto& p : c.n_coll_of_k) k.push_back(p.x), y.push_back(p.y), err.push_back(p.error);
       const std::vector<LocalExponent> local = analysis::local_exponents(c.n_coll_of_k);
       nlohmann::json js = {{"label", fmt::format("e = {:g}", c.e)}, {"N", fam.N}, {"e", c.e}, {"k", k}, {"y", y}, {"error", err},
-                           {"local", local_json(local)}, {"non_stationary_k", c.non_stationary_k}};
+                           {"local", local_exponents_json(local)}, {"non_stationary_k", c.non_stationary_k}};
       md += fmt::format("\n### e = {:g}\n\n| k | n_coll | local α to the next k |\n|---|---|---|\n", c.e);
       for (std::size_t i = 0; i < k.size(); ++i) {
         bool unsettled = false;

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/asymptotic_forms.hpp"
+#include "analysis/blocking.hpp"
 #include "analysis/collision_sequence.hpp"
 #include "config/exit_codes.hpp"
 #include "reproduce/figures.hpp"
@@ -41,29 +42,19 @@ std::vector<Collision> to_sequence(const std::vector<CollisionRecord>& recs) {
   return c;
 }
 
-std::pair<double, double> mean_error(const std::vector<double>& x) {
-  if (x.empty()) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
-  double m = 0, v = 0;
-  for (double a : x) m += a / static_cast<double>(x.size());
-  for (double a : x) v += (a - m) * (a - m);
-  return {m, x.size() > 1 ? std::sqrt(v / static_cast<double>(x.size() - 1) / static_cast<double>(x.size())) : 0.0};
-}
-
 double median(std::vector<double> x) {
   if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::nth_element(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2), x.end());
   return x[x.size() / 2];
 }
 
-// The k whose contact duration tau_c = pi / sqrt(2k/m) (undamped, m = 1) equals tau.
-double k_of_tau(double tau) { return 0.5 * std::pow(M_PI / tau, 2); }
-
-struct HardOutcome {
+// One section of the report and its part of the figure's data.
+struct Section {
   nlohmann::json json;
   std::string markdown;
 };
 
-HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
+Section hard_sequences(double e, int launches, const ReproduceFlags& o) {
   std::vector<double> taus;
   for (int j = 2; j <= 16; ++j) taus.push_back(std::pow(10.0, -0.5 * j));  // 1e-1 .. 1e-8
   CollapseSpec spec = free_space_spec(kN, e, std::numeric_limits<double>::infinity(), launches, o);
@@ -85,11 +76,7 @@ HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
       ++fitted;
       geometric_closer += f.rms_geometric < f.rms_power;
       ln_q.push_back(f.ln_q);
-      std::size_t a = 0;
-      while (a < seq.size() && t_star - seq[a].t_begin > 1e-2) ++a;
-      std::size_t b = a;
-      while (b + 1 < seq.size() && t_star - seq[b + 1].t_begin >= 1e-8) ++b;
-      const double r = analysis::mean_pair_log_ratio(seq, a, b);
+      const double r = analysis::mean_pair_log_ratio(seq, f.first, f.last);
       if (std::isfinite(r)) ln_q_pair.push_back(r);
       beta.push_back(f.beta);
     }
@@ -104,40 +91,28 @@ HardOutcome hard_sequences(double e, int launches, const ReproduceFlags& o) {
       samples.push_back(s);
     }
   });
-  HardOutcome out;
+  Section out;
   const std::size_t R = counts.size();
-  std::vector<double> n_mean(taus.size(), 0.0), n_err(taus.size(), 0.0), kq;
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(taus.size()), static_cast<Eigen::Index>(taus.size()));
-  for (std::size_t i = 0; i < taus.size(); ++i) {
-    kq.push_back(k_of_tau(taus[i]));
-    for (const auto& c : counts) n_mean[i] += c[i] / static_cast<double>(R);
-  }
+  // The k whose contact duration is tau: tau_c is proportional to k^-1/2 at fixed e.
+  const double tau_c_at_unit_k = contact_law(free_space_spec(kN, e, 1.0, 1, o).params).tau_c;
+  std::vector<double> kq;
+  for (double tau : taus) kq.push_back(std::pow(tau_c_at_unit_k / tau, 2));
+  std::vector<double> n_mean(taus.size(), std::numeric_limits<double>::quiet_NaN()), n_err = n_mean;
+  Eigen::MatrixXd C;
+  std::vector<analysis::LocalExponent> local;  // d ln n / d ln k_tau, errors from the paired launches
   if (R >= 2) {
-    for (std::size_t a = 0; a < taus.size(); ++a)
-      for (std::size_t b = 0; b < taus.size(); ++b) {
-        double s = 0;
-        for (const auto& c : counts) s += (c[a] - n_mean[a]) * (c[b] - n_mean[b]);
-        C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = s / static_cast<double>((R - 1) * R);
-      }
+    n_mean = analysis::means(counts);
+    C = analysis::covariance_of_means(counts);
     for (std::size_t i = 0; i < taus.size(); ++i) n_err[i] = std::sqrt(C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
+    local = analysis::local_exponents(kq, n_mean, C);
   }
-  // Local exponents d ln n / d ln k_tau between successive tau, errors from the paired launches.
-  std::vector<analysis::LocalExponent> local;
-  for (std::size_t i = 0; R >= 2 && i + 1 < taus.size(); ++i) {
-    std::vector<double> rel;
-    for (const auto& c : counts) rel.push_back(c[i + 1] / n_mean[i + 1] - c[i] / n_mean[i]);
-    const double span = std::log(kq[i + 1] / kq[i]);
-    local.push_back({kq[i], kq[i + 1], std::log(n_mean[i + 1] / n_mean[i]) / span, mean_error(rel).second / span});
-  }
-  const auto [p_mean, p_err] = mean_error(particles);
+  const auto [p_mean, p_err] = mean_and_error(particles);
   const double pmin = particles.empty() ? 0 : *std::min_element(particles.begin(), particles.end());
   const double pmax = particles.empty() ? 0 : *std::max_element(particles.begin(), particles.end());
   out.json = {{"e", e}, {"launches", launches}, {"collapsed", R}, {"tau", taus}, {"k_equiv", kq}, {"n", n_mean}, {"n_error", n_err},
               {"samples", samples}, {"particles", particles}, {"geometric_closer", geometric_closer}, {"fitted", fitted},
               {"median_q", std::exp(median(ln_q))}, {"median_beta", median(beta)}, {"median_q_pair", std::exp(median(ln_q_pair))}};
-  nlohmann::json lj = nlohmann::json::array();
-  for (const auto& l : local) lj.push_back({{"k1", l.k1}, {"k2", l.k2}, {"alpha", l.alpha}, {"error", l.error}});
-  out.json["local"] = lj;
+  out.json["local"] = local_exponents_json(local);
   std::string& md = out.markdown;
   md = fmt::format("\n### Hard spheres, e = {:g}: {} of {} launches collapse\n\n", e, R, launches);
   if (R < 2) {
@@ -182,8 +157,8 @@ struct SoftLaunch {
   double n = 0, events = 0, in_events = 0, particles = 0;  // particles: summed over events
 };
 
-HardOutcome soft_sequences(double e, const std::vector<double>& ks, int launches, const ReproduceFlags& o) {
-  HardOutcome out;
+Section soft_sequences(double e, const std::vector<double>& ks, int launches, const ReproduceFlags& o) {
+  Section out;
   out.json = {{"e", e}, {"launches", launches}, {"k", ks}, {"per_k", nlohmann::json::array()}};
   std::vector<double> edges;  // gap / tau_c, half decades from 1e-2 to 1e8
   for (int j = -4; j <= 16; ++j) edges.push_back(std::pow(10.0, 0.5 * j));
@@ -232,10 +207,10 @@ HardOutcome soft_sequences(double e, const std::vector<double>& ks, int launches
     const double per = ev_sum > 0 ? in_sum / ev_sum : 0.0;
     std::vector<double> lin;
     for (const auto& s : L) lin.push_back(ev_sum > 0 ? (s.in_events - per * s.events) * static_cast<double>(L.size()) / ev_sum : 0.0);
-    const auto [nm, ne] = mean_error(n);
-    const auto [em, ee] = mean_error(events);
-    const auto [fm, fe] = mean_error(frac);
-    const double pe = mean_error(lin).second;
+    const auto [nm, ne] = mean_and_error(n);
+    const auto [em, ee] = mean_and_error(events);
+    const auto [fm, fe] = mean_and_error(frac);
+    const double pe = mean_and_error(lin).second;
     ev_mean.push_back(em), ev_err.push_back(ee), per_mean.push_back(per), per_err.push_back(pe);
     md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {:.3f} |\n", power_of_ten_text(k), plus_minus(nm, ne, 1), plus_minus(em, ee, 1),
                       plus_minus(per, pe, 2), ev_sum > 0 ? p_sum / ev_sum : 0.0, plus_minus(fm, fe, 3), gaps_total > 0 ? overlapping / gaps_total : 0.0);
@@ -274,8 +249,8 @@ FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o) {
       "gaps (next contact begins − last one ended) are below {:g} τ_c. Figure: `intervals.png` (and .pdf).\n",
       o.preset, kN, kEventMin, kEventGap);
   for (double e : {0.3, 0.5}) {
-    HardOutcome h = hard_sequences(e, hard_launches, o);
-    HardOutcome s = soft_sequences(e, ks, soft_launches, o);
+    Section h = hard_sequences(e, hard_launches, o);
+    Section s = soft_sequences(e, ks, soft_launches, o);
     plot["hard"].push_back(h.json);
     plot["soft"].push_back(s.json);
     md += h.markdown + s.markdown;

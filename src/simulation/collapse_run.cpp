@@ -13,6 +13,7 @@
 #include <tuple>
 #include <utility>
 
+#include "analysis/blocking.hpp"
 #include "engines/hard_sphere_engine.hpp"
 #include "model/floor.hpp"
 #include "model/random.hpp"
@@ -93,20 +94,6 @@ bool any_overlap(const ChainState& s, double d) {
   return false;
 }
 
-// Mean and standard error of the mean (sample standard deviation / sqrt(n)), two-pass; NaN where
-// undefined (no value, or one value for the error).
-std::pair<double, double> mean_and_error(const std::vector<double>& x) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (x.empty()) return {nan, nan};
-  double sum = 0;
-  for (double v : x) sum += v;
-  const double mean = sum / static_cast<double>(x.size());
-  if (x.size() < 2) return {mean, nan};
-  double ss = 0;
-  for (double v : x) ss += (v - mean) * (v - mean);
-  const double n = static_cast<double>(x.size());
-  return {mean, std::sqrt(ss / (n - 1) / n)};
-}
 
 struct RealizationRun {
   RealizationOutcome outcome;
@@ -262,12 +249,6 @@ KSlope k_slope(const CollapseResult& a, const CollapseResult& b) {
   const double ln_k = std::log(s.k2 / s.k1);
   s.alpha = std::log(b.n_tot_mean / a.n_tot_mean) / ln_k;
   s.alpha_error = std::hypot(a.n_tot_error / a.n_tot_mean, b.n_tot_error / b.n_tot_mean) / ln_k;
-  std::vector<double> rel;
-  for (std::size_t r = 0; r < a.outcomes.size() && r < b.outcomes.size(); ++r) {
-    if (a.outcomes[r].collapsed || b.outcomes[r].collapsed) continue;
-    rel.push_back(static_cast<double>(b.outcomes[r].n_tot()) / b.n_tot_mean - static_cast<double>(a.outcomes[r].n_tot()) / a.n_tot_mean);
-  }
-  s.alpha_paired_error = mean_and_error(rel).second / ln_k;
   return s;
 }
 

@@ -104,9 +104,6 @@ struct KSlope {
   // alpha = d ln n_tot / d ln k from the two means (for n_tot ~ k^alpha); its error combines the
   // two standard errors as if independent, an upper bound since the launches are shared.
   double alpha = 0, alpha_error = 0;
-  // The error of alpha from the paired launches: the spread of n2_r / n2 - n1_r / n1 over the
-  // launches finished at both k (the linearised change of ln n2 - ln n1), over sqrt(launches).
-  double alpha_paired_error = 0;
 };
 KSlope k_slope(const CollapseResult& a, const CollapseResult& b);
 

@@ -9,7 +9,6 @@
 #include <limits>
 #include <fmt/format.h>
 
-#include "store/collapse_json.hpp"
 #include "store/run_json.hpp"
 #include "simulation/run_key.hpp"
 #include "store/sqlite_statement.hpp"
@@ -126,7 +125,9 @@ std::string schema_sql() {
   return sql;
 }
 
-std::string utc_now() {
+}  // namespace
+
+std::string ResultsStore::utc_now() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
   gmtime_r(&t, &tm);
@@ -134,8 +135,6 @@ std::string utc_now() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
 }
-
-}  // namespace
 
 std::string cannot_create_file_reason(const std::string& path) {
   namespace fs = std::filesystem;
@@ -279,8 +278,7 @@ void ResultsStore::exec(const char* sql) {
   }
 }
 
-template <class Write>
-std::int64_t ResultsStore::in_transaction(Write write) {
+std::int64_t ResultsStore::in_transaction(const std::function<std::int64_t()>& write) {
   exec("BEGIN IMMEDIATE");
   try {
     const std::int64_t id = write();
@@ -403,102 +401,6 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     }
     return id;
   }
-}
-
-namespace {
-
-// The values of kCollapseIdentityColumns for a collapse count, in that order, from index c on.
-void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
-  q.bind(c++, std::string(setup_name(s.setup)));
-  q.bind(c++, s.engine.name);
-  q.bind(c++, static_cast<std::int64_t>(s.params.N));
-  q.bind(c++, s.params.e);
-  q.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)
-  q.bind(c++, s.launch.a);
-  q.bind(c++, s.launch.v0);
-  q.bind(c++, s.launch.dv0);
-  q.bind(c++, std::string(rule_name(s.rule)));
-  q.bind(c++, static_cast<std::int64_t>(s.realizations));
-  q.bind(c++, static_cast<std::int64_t>(s.seed));
-  q.bind(c++, s.engine.dt_factor);
-  q.bind(c++, s.engine.hard.tc);
-}
-
-}  // namespace
-
-std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& spec) {
-  std::string where;
-  for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
-  SqlStatement find(db_, ("SELECT id, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed, wall_seconds FROM collapse_runs WHERE " +
-                          where + " ORDER BY id LIMIT 1")
-                             .c_str());
-  int f = 1;
-  bind_collapse_definition(find, f, spec);
-  if (!find.row()) return std::nullopt;
-  CollapseResult r;
-  r.spec = spec;
-  const std::int64_t id = find.column_int(0);
-  r.law.tau_c = find.column_double(1);
-  r.n_tot_mean = find.column_double(2);
-  r.n_tot_error = find.column_double(3);
-  r.n_tot_min = static_cast<std::uint64_t>(find.column_int(4));
-  r.n_tot_max = static_cast<std::uint64_t>(find.column_int(5));
-  r.collapsed = static_cast<int>(find.column_int(6));
-  r.wall_seconds = find.column_double(7);
-  SqlStatement real(db_, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_realizations WHERE run_id = ? ORDER BY realization");
-  real.bind(1, id);
-  while (real.row()) {
-    RealizationOutcome o;
-    o.particle_collisions = static_cast<std::uint64_t>(real.column_int(0));
-    o.wall_hits = static_cast<std::uint64_t>(real.column_int(1));
-    o.collapsed = real.column_int(2) != 0;
-    o.t_stop = real.column_double(3);
-    r.collisions += o.particle_collisions;
-    r.outcomes.push_back(o);
-  }
-  if (static_cast<int>(r.outcomes.size()) != spec.realizations) return std::nullopt;  // an incomplete row is not the count
-  return r;
-}
-
-std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
-  return in_transaction([&] {
-    std::string where;
-    for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
-    SqlStatement find(db_, ("SELECT id FROM collapse_runs WHERE " + where + " LIMIT 1").c_str());
-    int f = 1;
-    bind_collapse_definition(find, f, r.spec);
-    if (find.row()) return find.column_int(0);  // the same count is already stored
-    SqlStatement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
-        dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
-        wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
-    const CollapseSpec& s = r.spec;
-    int c = 1;
-    row.bind(c++, utc_now());
-    row.bind(c++, std::string(code_version()));
-    bind_collapse_definition(row, c, s);
-    row.bind(c++, r.law.tau_c);
-    row.bind(c++, r.n_tot_mean);  // NaN (no realisation finished) is stored as NULL
-    row.bind(c++, r.n_tot_error);
-    row.bind(c++, static_cast<std::int64_t>(r.n_tot_min));
-    row.bind(c++, static_cast<std::int64_t>(r.n_tot_max));
-    row.bind(c++, static_cast<std::int64_t>(r.collapsed));
-    row.bind(c++, r.wall_seconds);
-    row.bind(c++, collapse_result_to_json(r).dump());
-    row.run();
-    const std::int64_t id = sqlite3_last_insert_rowid(db_);
-    SqlStatement real(db_, "INSERT INTO collapse_realizations(run_id, realization, particle_collisions, wall_hits, collapsed, t_stop) VALUES(?,?,?,?,?,?)");
-    for (std::size_t i = 0; i < r.outcomes.size(); ++i) {
-      const RealizationOutcome& o = r.outcomes[i];
-      real.bind(1, id);
-      real.bind(2, static_cast<std::int64_t>(i));
-      real.bind(3, static_cast<std::int64_t>(o.particle_collisions));
-      real.bind(4, static_cast<std::int64_t>(o.wall_hits));
-      real.bind(5, static_cast<std::int64_t>(o.collapsed));
-      real.bind(6, o.t_stop);
-      real.run();
-    }
-    return id;
-  });
 }
 
 std::int64_t ResultsStore::count_runs() {

@@ -1,6 +1,7 @@
 #pragma once
 // The results store: an embedded SQLite database, one row per run in `runs`, the per-particle
-// profiles in `profiles`. Every run is written in one transaction, so an interrupted or failed
+// profiles in `profiles`, free-space collapse counts in `collapse_runs` and `collapse_realizations`
+// (store/collapse_counts.cpp). Every run is written in one transaction, so an interrupted or failed
 // run leaves no partial row (SQLite's atomic commit holds even through kill -9 or power loss).
 #include <cstdint>
 #include <functional>
@@ -95,8 +96,8 @@ class ResultsStore {
   void migrate_from_version_1();
   std::int64_t append_run(const RunResult& r);  // inside a transaction
   // Runs write() between BEGIN IMMEDIATE and COMMIT, rolling back if it throws; returns its id.
-  template <class Write>
-  std::int64_t in_transaction(Write write);
+  std::int64_t in_transaction(const std::function<std::int64_t()>& write);
+  static std::string utc_now();  // "2026-11-24T05:00:00Z", the created_utc of a new row
   sqlite3* db_ = nullptr;
   std::string path_;
 };
