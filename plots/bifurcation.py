@@ -2,9 +2,12 @@
 """The paper's Fig. bifurcationdiagram from `granchain reproduce --figure fig6` (fig6.json).
 
 Usage: /usr/bin/python3 plots/bifurcation.py fig6.json PREFIX   -> PREFIX.png and PREFIX.pdf
-1 - e_c1 (points with one-standard-error bars) and 1 - e_c2 (the bracket between grid points)
-against 1/N; the fits (1 - e_c) = A/N of this data (solid) and the paper's A = 2.6 and 3.0
-(dashed, dash-dotted) and its Table 1 values for N = 25, 50 (open symbols); shaded: the e range where the profiles show the partially condensed state.
+1 - e_c1 from b -> 0 (points with one-standard-error bars) and the classification boundary (the bracket
+between the last collapsing and the first uncollapsing e, thin), 1 - e_c2 as the bracket where the
+curvature is convex by 2 errors / not (squares) and where it changes sign (diamonds, the paper's
+reading), against 1/N; the fits (1 - e_c) = A/N of this data (solid) and the paper's A = 2.6 and 3.0
+(dashed, dash-dotted) and its Table 1 values for N = 25, 50 (open symbols); shaded: the e range where
+the profiles show the partially condensed state.
 """
 import sys
 
@@ -24,9 +27,14 @@ def main(argv):
         x = 1.0 / f["N"]
         if f["e_c1"]:
             ax.errorbar(x, 1 - f["e_c1"]["value"], yerr=f["e_c1"]["error"], fmt="o", color="tab:blue", capsize=3, ms=4)
+        if f.get("boundary"):
+            lo, hi = 1 - f["boundary"][1], 1 - f["boundary"][0]
+            ax.errorbar(x * 1.02, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="_", color="tab:cyan", capsize=4, ms=8)
         if f["e_c2"]:
             lo, hi = 1 - f["e_c2"]["high"], 1 - f["e_c2"]["low"]
             ax.errorbar(x, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="s", color="tab:red", capsize=3, ms=4)
+        if f.get("e_c2_sign"):
+            ax.errorbar(x * 0.98, 1 - f["e_c2_sign"]["value"], yerr=f["e_c2_sign"]["error"], fmt="D", color="tab:orange", capsize=3, ms=4)
     # The partially condensed region: between the smallest and largest 1 - e flagged, per N.
     xs, lows, highs = [], [], []
     for f in fams:
@@ -48,12 +56,27 @@ def main(argv):
     ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label=r"paper: $3.0/N$")
     if data.get("A1"):
         ax.plot(xx, data["A1"]["A"] * xx, color="tab:blue", lw=0.8, label=r"fit $e_{c1}$: $A$ = %.2f" % data["A1"]["A"])
+    if data.get("A1_boundary"):
+        ax.plot(xx, data["A1_boundary"]["A"] * xx, color="tab:cyan", lw=0.8, label=r"fit boundary: $A$ = %.2f" % data["A1_boundary"]["A"])
     if data.get("A2"):
         ax.plot(xx, data["A2"]["A"] * xx, color="tab:red", lw=0.8, label=r"fit $e_{c2}$: $A$ = %.2f" % data["A2"]["A"])
-    ax.plot([], [], "o", color="tab:blue", label=r"$1 - e_{c1}$")
-    ax.plot([], [], "s", color="tab:red", label=r"$1 - e_{c2}$ (bracket)")
+    if data.get("A2_sign"):
+        ax.plot(xx, data["A2_sign"]["A"] * xx, color="tab:orange", lw=0.8, label=r"fit $e_{c2}$ (sign): $A$ = %.2f" % data["A2_sign"]["A"])
+    ax.plot([], [], "o", color="tab:blue", label=r"$1 - e_{c1}$ ($b \to 0$)")
+    ax.plot([], [], "_", color="tab:cyan", ms=8, label=r"classification boundary")
+    ax.plot([], [], "s", color="tab:red", label=r"$1 - e_{c2}$ (convex by 2 errors / not)")
+    ax.plot([], [], "D", color="tab:orange", label=r"$1 - e_{c2}$ (curvature changes sign)")
     ax.set_xlim(0, xx.max())
-    ax.set_ylim(0, None)
+    # The y range of the points themselves: a wide e_c2 bracket (one power-law e far below the
+    # critical region) is clipped rather than squeezing the rest.
+    tops = [3.0 * xx.max()]
+    for f in fams:
+        tops += [1 - f["e_c1"]["value"] + f["e_c1"]["error"]] if f["e_c1"] else []
+        tops += [1 - f["boundary"][0]] if f.get("boundary") else []
+        tops += [1 - f["e_c2_sign"]["value"] + f["e_c2_sign"]["error"]] if f.get("e_c2_sign") else []
+        if f["e_c2"] and f["e_c2"]["high"] - f["e_c2"]["low"] < 0.05:
+            tops.append(1 - f["e_c2"]["low"])
+    ax.set_ylim(0, 1.15 * max(tops))
     ax.set_xlabel(r"$1/N$")
     ax.set_ylabel(r"$1 - e$")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)

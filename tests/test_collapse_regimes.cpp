@@ -7,6 +7,7 @@
 
 #include "analysis/collapse_regimes.hpp"
 #include "analysis/critical_restitution.hpp"
+#include "analysis/regime_report.hpp"
 #include "model/random.hpp"
 
 using namespace granchain;
@@ -375,4 +376,43 @@ TEST(CollapseRegimes, E_c2FromTheCurvatureSignChange) {
   std::vector<DataPoint> convex;
   for (double e : es) convex.push_back({e, 1.0, 0.05});
   EXPECT_FALSE(e_c2_from_curvature_sign(convex).found);
+}
+
+// Across N, from stored-run-like input: at N = 25, 50, 100 on fig6's grid e = 1 - c/N, n_coll =
+// 10 + b x + g x^2 (x = log10 k) with b = 1.5 N^(5/2) ((1 - e) - 2.6/N)^2 above c = 2.6 (Eq. b_e_N)
+// and a curvature g = 0.02 N ((1 - e) - 3/N) that changes sign at c = 3; below c = 2.6 the count
+// has converged. Exact values with errors 1e-3: the classification boundary is c = 2.6 – 2.8 at
+// every N, so its fit is A = 2.7; e_c2 changes sign at c = 3.0 (A = 3.0); the convex-by-2-errors
+// bracket is c = 3.0 – 3.2 (A = 3.1).
+TEST(CollapseRegimes, AcrossNFitsTheBoundaryAndTheCurvatureSignChange) {
+  const std::vector<double> cs = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2};
+  std::vector<NcollRun> runs;
+  for (int N : {25, 50, 100})
+    for (double c : cs) {
+      const double e = 1.0 - c / N;
+      const double d = (1.0 - e) - 2.6 / N;
+      const double b = d > 1e-12 ? 1.5 * std::pow(N, 2.5) * d * d : 0.0;
+      const double g = d > 1e-12 ? 0.02 * N * ((1.0 - e) - 3.0 / N) : 0.0;
+      for (double k : kGrid) {
+        const double x = std::log10(k);
+        runs.push_back({"exact", N, 1.0, e, k, 10.0 + b * x + g * x * x, 1e-3, true});
+      }
+    }
+  const RegimeReport r = analyze_runs(runs, 1e6);
+  ASSERT_EQ(r.across.size(), 1u);
+  const AcrossN& a = r.across.front();
+  for (const auto& f : r.families) {
+    ASSERT_TRUE(f.e_c1_estimate.has_boundary) << f.N;
+    EXPECT_NEAR(f.e_c1_estimate.last_collapsing_e, 1.0 - 2.8 / f.N, 1e-9) << f.N;
+    EXPECT_NEAR(f.e_c1_estimate.first_uncollapsing_e, 1.0 - 2.6 / f.N, 1e-9) << f.N;
+    ASSERT_TRUE(f.e_c2_sign.found) << f.N;
+    EXPECT_NEAR(f.e_c2_sign.value, 1.0 - 3.0 / f.N, 1e-6) << f.N;
+  }
+  ASSERT_TRUE(a.has_A1_boundary);
+  EXPECT_NEAR(a.A1_boundary.A, 2.7, 1e-9);
+  EXPECT_EQ(a.A1_boundary.dof, 2);
+  ASSERT_TRUE(a.has_A2_sign);
+  EXPECT_NEAR(a.A2_sign.A, 3.0, 1e-5);
+  ASSERT_TRUE(a.has_A2);
+  EXPECT_NEAR(a.A2.A, 3.1, 1e-9);
 }

@@ -275,6 +275,7 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
   EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
   const std::string csv = slurp(dir_ / "figs/table1.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 8) << csv;
+  EXPECT_EQ(csv.rfind("N,kT0,e_c1,e_c1_err,boundary_low,boundary_high,e_c2_low,e_c2_high,e_c2_sign,e_c2_sign_err,", 0), 0u) << csv;
   const CliResult again = run("reproduce --figure fig9 --preset smoke --out figs");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.err.find("already in reproduce.db, 0 to run"), std::string::npos) << again.err;

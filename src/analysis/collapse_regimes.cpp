@@ -156,9 +156,17 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
   for (std::size_t i = c.size(); i-- > 1;) {
     if (!(c[i].y <= 0 && c[i - 1].y > 0)) continue;
     const double mid = 0.5 * (c[i - 1].x + c[i].x);
+    // The points within half_width of the bracket; on a grid too coarse for three of them, the
+    // three nearest to it.
     std::vector<DataPoint> near;
     for (const auto& p : c)
       if (std::abs(p.x - mid) <= half_width + 0.5 * (c[i].x - c[i - 1].x)) near.push_back({p.x - mid, p.y, p.error});
+    if (near.size() < 3 && c.size() >= 3) {
+      near.clear();
+      for (const auto& p : c) near.push_back({p.x - mid, p.y, p.error});
+      std::sort(near.begin(), near.end(), [](const DataPoint& a, const DataPoint& b) { return std::abs(a.x) < std::abs(b.x); });
+      near.resize(3);
+    }
     if (near.size() < 3) return cv;
     const PolynomialFit f = fit_polynomial(near, 1);  // curvature = a + b (e - mid)
     const double a = f.coef[0], b = f.coef[1];

@@ -14,6 +14,19 @@ bool table1_e(double e) {
   return false;
 }
 
+// The classification boundary (last collapsing e – first uncollapsing e) as a value with an error:
+// its midpoint, and the standard deviation of a position uniform within it.
+CriticalValue boundary_value(const E_c1Estimate& x) {
+  CriticalValue c;
+  c.low = x.last_collapsing_e;
+  c.high = x.first_uncollapsing_e;
+  c.value = 0.5 * (c.low + c.high);
+  c.error = (c.high - c.low) / std::sqrt(12.0);
+  c.found = true;
+  c.method = "classification boundary";
+  return c;
+}
+
 }  // namespace
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
@@ -99,8 +112,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   for (const auto& [key, fams] : by_temperature) {
     AcrossN a;
     std::tie(a.engine, a.kT0) = key;
-    std::vector<double> N1, N2;
-    std::vector<CriticalValue> c1, c2;
+    std::vector<double> N1, N2, Nb, Ns;
+    std::vector<CriticalValue> c1, c2, cb, cs;
     std::vector<DataPoint> alpha_of_n;
     for (const FamilyAnalysis* f : fams) {
       if (f->e_c1.found) {
@@ -111,6 +124,14 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         N2.push_back(f->N);
         c2.push_back(f->e_c2);
       }
+      if (f->e_c1_estimate.has_boundary) {
+        Nb.push_back(f->N);
+        cb.push_back(boundary_value(f->e_c1_estimate));
+      }
+      if (f->e_c2_sign.found) {
+        Ns.push_back(f->N);
+        cs.push_back(f->e_c2_sign);
+      }
       if (f->has_alpha_bar && f->alpha_bar.error > 0) alpha_of_n.push_back({static_cast<double>(f->N), f->alpha_bar.value, f->alpha_bar.error});
     }
     if (N1.size() >= 2) {
@@ -120,6 +141,14 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     if (N2.size() >= 2) {
       a.A2 = fit_inverse_n(N2, c2);
       a.has_A2 = true;
+    }
+    if (Nb.size() >= 2) {
+      a.A1_boundary = fit_inverse_n(Nb, cb);
+      a.has_A1_boundary = true;
+    }
+    if (Ns.size() >= 2) {
+      a.A2_sign = fit_inverse_n(Ns, cs);
+      a.has_A2_sign = true;
     }
     if (alpha_of_n.size() >= 3) {
       a.alpha_fit = fit_alpha_vs_log10_n(alpha_of_n);

@@ -54,7 +54,12 @@ struct AcrossN {  // one (engine, kT0), over N
   std::string engine;
   double kT0 = 1;
   bool has_A1 = false, has_A2 = false, has_alpha_fit = false;
-  InverseNFit A1, A2;  // e_c1, e_c2
+  InverseNFit A1, A2;  // e_c1 (b -> 0), e_c2 (convex by 2 errors / not: the bracket)
+  // The same fits of the classification boundary (its midpoint, with the bracket's half-width /
+  // sqrt 3, the standard deviation of a uniform position within it) and of e_c2 where the
+  // curvature changes sign (the paper's reading).
+  bool has_A1_boundary = false, has_A2_sign = false;
+  InverseNFit A1_boundary, A2_sign;
   LineFit alpha_fit;   // alpha bar against log10 N
 };
 

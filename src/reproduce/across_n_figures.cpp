@@ -83,30 +83,36 @@ std::vector<GridBlock> table1_grid(const ReproduceFlags& o) { return across_bloc
 FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
   const SweepAnalysis s = across_n(o);
   const analysis::AcrossN* x = across_at(s.a, 1.0);
-  nlohmann::json plot = {{"families", nlohmann::json::array()}, {"A1", nullptr}, {"A2", nullptr}};
+  nlohmann::json plot = {{"families", nlohmann::json::array()}, {"A1", nullptr}, {"A2", nullptr}, {"A1_boundary", nullptr}, {"A2_sign", nullptr}};
   std::string table =
-      "| N | e_c1 measured (b → 0) | classification boundary | paper | e_c2 measured | paper | partially condensed at e |\n"
-      "|---|---|---|---|---|---|---|\n";
+      "| N | e_c1 measured (b → 0) | classification boundary | paper | e_c2 (convex by 2 errors / not) | e_c2 (curvature changes sign) "
+      "| paper | partially condensed at e |\n"
+      "|---|---|---|---|---|---|---|---|\n";
   for (const auto& f : s.a.report.families) {
     const std::vector<double> cond = condensed_es(s.a, f);
-    plot["families"].push_back({{"N", f.N}, {"e_c1", critical_json(f.e_c1)}, {"e_c2", critical_json(f.e_c2)}, {"condensed_e", cond}});
+    const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
+    plot["families"].push_back({{"N", f.N}, {"e_c1", critical_json(f.e_c1)}, {"e_c2", critical_json(f.e_c2)},
+                                {"e_c2_sign", critical_json(f.e_c2_sign)}, {"condensed_e", cond},
+                                {"boundary", x1.has_boundary ? nlohmann::json{x1.last_collapsing_e, x1.first_uncollapsing_e} : nlohmann::json(nullptr)}});
     const std::string paper1 = f.N == 25 ? "0.894" : f.N == 50 ? "0.944" : fmt::format("{:.3f} (fit)", 1 - 2.6 / f.N);
     const std::string paper2 = f.N == 25 ? "0.878 – 0.884" : f.N == 50 ? "0.936 – 0.942" : fmt::format("{:.3f} (fit)", 1 - 3.0 / f.N);
-    const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
     const std::string boundary =
         x1.has_boundary ? fmt::format("{:.4f} – {:.4f}", x1.last_collapsing_e, x1.first_uncollapsing_e) : "not found";
-    table += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), boundary, paper1,
-                         bracket_text(f.e_c2), paper2,
+    table += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), boundary, paper1,
+                         bracket_text(f.e_c2), critical_text(f.e_c2_sign), paper2,
                          cond.empty() ? "none" : fmt::format("{:g} – {:g} ({} of the grid)", cond.front(), cond.back(), cond.size()));
   }
   std::string fits;
-  if (x && x->has_A1) {
-    plot["A1"] = {{"A", x->A1.A}, {"error", x->A1.A_error}};
-    fits += fmt::format("| 1 − e_c1 = A/N | A = {} (χ² = {:.1f}, {} dof) | A = 2.6 |\n", plus_minus(x->A1.A, x->A1.A_error, 2), x->A1.chi2, x->A1.dof);
-  }
-  if (x && x->has_A2) {
-    plot["A2"] = {{"A", x->A2.A}, {"error", x->A2.A_error}};
-    fits += fmt::format("| 1 − e_c2 = A/N | A = {} (χ² = {:.1f}, {} dof) | A = 3.0 |\n", plus_minus(x->A2.A, x->A2.A_error, 2), x->A2.chi2, x->A2.dof);
+  auto fit_row = [&](const char* key, bool has, const analysis::InverseNFit& fit, const std::string& what, const char* paper) {
+    if (!has) return;
+    plot[key] = {{"A", fit.A}, {"error", fit.A_error}};
+    fits += fmt::format("| 1 − {} = A/N | A = {} (χ² = {:.1f}, {} dof) | {} |\n", what, plus_minus(fit.A, fit.A_error, 2), fit.chi2, fit.dof, paper);
+  };
+  if (x) {
+    fit_row("A1", x->has_A1, x->A1, "e_c1 (b → 0)", "A = 2.6");
+    fit_row("A1_boundary", x->has_A1_boundary, x->A1_boundary, "classification boundary", "A = 2.6 (e_c1)");
+    fit_row("A2", x->has_A2, x->A2, "e_c2 (convex by 2 errors / not)", "A = 3.0");
+    fit_row("A2_sign", x->has_A2_sign, x->A2_sign, "e_c2 (curvature changes sign)", "A = 3.0");
   }
   const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
   FigureOutcome out{s.exit_code, "", drawn};
@@ -115,6 +121,8 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
                              "its fit lines (Eq. e-fit) stand in.\n\n",
                              o.preset, s.grid_text);
   out.markdown += table + "\n| fit | measured | paper |\n|---|---|---|\n" + (fits.empty() ? "| (1 − e_c) = A/N | fewer than two N with e_c found | |\n" : fits);
+  out.markdown += "\nThe classification boundary enters its fit as the midpoint of the bracket with the bracket's width / √12 as "
+                  "error; e_c2 (convex by 2 errors / not) likewise with its half-width.";
   out.markdown += "\nThe partially condensed state is flagged where K_i rises above its dip near the floor by more than 3 standard "
                   "errors (docs/analysis.md), in the profiles at the largest k; the paper's shaded region has its upper e near e_c1.\n";
   return out;
@@ -214,19 +222,29 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o) {
                                        {25, 4, "0.892", "0.872 – 0.880", "0.20"}, {25, 10, "0.890", "0.872 – 0.878", "0.19"},
                                        {50, 1, "0.944", "0.936 – 0.942", "0.25"}, {50, 2, "0.944", "0.938 – 0.942", "0.25"},
                                        {50, 4, "0.944", "0.938 – 0.940", "0.24"}, {50, 10, "0.944", "0.934 – 0.944", "0.24"}};
-  std::string table = "| N | k_B T0 | e_c1 | paper | e_c2 | paper | ᾱ | paper |\n|---|---|---|---|---|---|---|---|\n";
-  std::string csv = "N,kT0,e_c1,e_c1_err,e_c2_low,e_c2_high,alpha_bar,alpha_bar_err,paper_e_c1,paper_e_c2,paper_alpha_bar\n";
+  std::string table =
+      "| N | k_B T0 | e_c1 (b → 0) | classification boundary | paper | e_c2 (convex by 2 errors / not) | e_c2 (curvature changes sign) "
+      "| paper | ᾱ | paper |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "N,kT0,e_c1,e_c1_err,boundary_low,boundary_high,e_c2_low,e_c2_high,e_c2_sign,e_c2_sign_err,alpha_bar,alpha_bar_err,"
+      "paper_e_c1,paper_e_c2,paper_alpha_bar\n";
   std::string locals;  // the local exponents behind each ᾱ
   for (const PaperRow& row : paper)
     for (const auto& f : s.a.report.families) {
       if (f.N != row.N || f.kT0 != row.T0) continue;
-      table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), row.ec1, bracket_text(f.e_c2),
-                           row.ec2, f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-", row.alpha);
+      const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
+      const std::string boundary =
+          x1.has_boundary ? fmt::format("{:.4f} – {:.4f}", x1.last_collapsing_e, x1.first_uncollapsing_e) : "not found";
+      table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), boundary, row.ec1,
+                           bracket_text(f.e_c2), critical_text(f.e_c2_sign), row.ec2,
+                           f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-", row.alpha);
       if (f.has_alpha_bar)
         locals += fmt::format("- N = {}, k_B T0 = {:g}: {}\n", f.N, f.kT0, local_exponents_text(f.local_alpha_bar));
       auto num = [](bool has, double v) { return has ? fmt::format("{}", v) : std::string(); };
-      csv += fmt::format("{},{:g},{},{},{},{},{},{},{},\"{}\",{}\n", f.N, f.kT0, num(f.e_c1.found, f.e_c1.value), num(f.e_c1.found, f.e_c1.error),
-                         num(f.e_c2.found, f.e_c2.low), num(f.e_c2.found, f.e_c2.high), num(f.has_alpha_bar, f.alpha_bar.value),
+      csv += fmt::format("{},{:g},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", f.N, f.kT0, num(f.e_c1.found, f.e_c1.value),
+                         num(f.e_c1.found, f.e_c1.error), num(x1.has_boundary, x1.last_collapsing_e), num(x1.has_boundary, x1.first_uncollapsing_e),
+                         num(f.e_c2.found, f.e_c2.low), num(f.e_c2.found, f.e_c2.high), num(f.e_c2_sign.found, f.e_c2_sign.value),
+                         num(f.e_c2_sign.found, f.e_c2_sign.error), num(f.has_alpha_bar, f.alpha_bar.value),
                          num(f.has_alpha_bar, f.alpha_bar.error), row.ec1, row.ec2, row.alpha);
     }
   write_output(output_path(o, "table1.csv"), csv);

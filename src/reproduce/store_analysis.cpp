@@ -194,6 +194,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
       return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
     };
     j["across_N"].push_back({{"engine", a.engine}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
+                             {"A_boundary", inv(a.has_A1_boundary, a.A1_boundary)}, {"A_ec2_curvature_sign", inv(a.has_A2_sign, a.A2_sign)},
                              {"alpha_vs_log10_N", a.has_alpha_fit ? nlohmann::json{{"slope", a.alpha_fit.slope},
                                                                                    {"slope_err", a.alpha_fit.slope_error},
                                                                                    {"intercept", a.alpha_fit.intercept},
@@ -279,6 +280,10 @@ std::string analysis_text(const StoreAnalysis& a) {
     out += fmt::format("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
+    if (a.has_A1_boundary)
+      out += fmt::format("  (classification boundary: A = {}; e_c2 where the curvature changes sign: A = {})",
+                         plus_minus(a.A1_boundary.A, a.A1_boundary.A_error, 2),
+                         a.has_A2_sign ? plus_minus(a.A2_sign.A, a.A2_sign.A_error, 2) : std::string("-"));
     if (a.has_alpha_fit)
       out += fmt::format("  alpha bar = ({}) log10 N + ({})", plus_minus(a.alpha_fit.slope, a.alpha_fit.slope_error),
                  plus_minus(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
