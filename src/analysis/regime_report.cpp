@@ -112,44 +112,27 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   for (const auto& [key, fams] : by_temperature) {
     AcrossN a;
     std::tie(a.engine, a.kT0) = key;
-    std::vector<double> N1, N2, Nb, Ns;
-    std::vector<CriticalValue> c1, c2, cb, cs;
-    std::vector<DataPoint> alpha_of_n;
-    for (const FamilyAnalysis* f : fams) {
-      if (f->e_c1.found) {
-        N1.push_back(f->N);
-        c1.push_back(f->e_c1);
-      }
-      if (f->e_c2.found) {
-        N2.push_back(f->N);
-        c2.push_back(f->e_c2);
-      }
-      if (f->e_c1_estimate.has_boundary) {
-        Nb.push_back(f->N);
-        cb.push_back(boundary_value(f->e_c1_estimate));
-      }
-      if (f->e_c2_sign.found) {
+    // (1 - e_c) = A/N over the N where a critical value was found (at least two).
+    auto fit_over_n = [&fams](auto value_of, bool& has, InverseNFit& fit) {
+      std::vector<double> Ns;
+      std::vector<CriticalValue> values;
+      for (const FamilyAnalysis* f : fams) {
+        const CriticalValue c = value_of(*f);
+        if (!c.found) continue;
         Ns.push_back(f->N);
-        cs.push_back(f->e_c2_sign);
+        values.push_back(c);
       }
+      has = Ns.size() >= 2;
+      if (has) fit = fit_inverse_n(Ns, values);
+    };
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c1; }, a.has_A1, a.A1);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2; }, a.has_A2, a.A2);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c1_estimate.has_boundary ? boundary_value(f.e_c1_estimate) : CriticalValue{}; },
+               a.has_A1_boundary, a.A1_boundary);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2_sign; }, a.has_A2_sign, a.A2_sign);
+    std::vector<DataPoint> alpha_of_n;
+    for (const FamilyAnalysis* f : fams)
       if (f->has_alpha_bar && f->alpha_bar.error > 0) alpha_of_n.push_back({static_cast<double>(f->N), f->alpha_bar.value, f->alpha_bar.error});
-    }
-    if (N1.size() >= 2) {
-      a.A1 = fit_inverse_n(N1, c1);
-      a.has_A1 = true;
-    }
-    if (N2.size() >= 2) {
-      a.A2 = fit_inverse_n(N2, c2);
-      a.has_A2 = true;
-    }
-    if (Nb.size() >= 2) {
-      a.A1_boundary = fit_inverse_n(Nb, cb);
-      a.has_A1_boundary = true;
-    }
-    if (Ns.size() >= 2) {
-      a.A2_sign = fit_inverse_n(Ns, cs);
-      a.has_A2_sign = true;
-    }
     if (alpha_of_n.size() >= 3) {
       a.alpha_fit = fit_alpha_vs_log10_n(alpha_of_n);
       a.has_alpha_fit = true;
