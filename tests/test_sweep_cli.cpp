@@ -273,6 +273,12 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
   for (const char* fig : {"| fig1 |", "| fig6 |", "| fig7 |", "| fig8 |", "| fig9 |", "| fig10 |", "| table1 |"})
     EXPECT_NE(all.find(std::string(fig)), std::string::npos) << fig;
   EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
+  // The runs' stored wall times are summed per figure: none for the sketches, some for fig6.
+  EXPECT_NE(all.find("| CPU time of its runs |"), std::string::npos);
+  EXPECT_NE(all.find("| fig1 | 1dmodel | done |"), std::string::npos);
+  const std::size_t fig6_row = all.find("| fig6 |");
+  const std::string row = all.substr(fig6_row, all.find('\n', fig6_row) - fig6_row);
+  EXPECT_EQ(row.substr(row.size() - 4), " s |") << row;
   const std::string csv = slurp(dir_ / "figs/table1.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 8) << csv;
   EXPECT_EQ(csv.rfind("N,kT0,e_c1,e_c1_err,boundary_low,boundary_high,e_c2_low,e_c2_high,e_c2_sign,e_c2_sign_err,", 0), 0u) << csv;

@@ -115,7 +115,7 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
     fit_row("A2_sign", x->has_A2_sign, x->A2_sign, "e_c2 (curvature changes sign)", "A = 3.0");
   }
   const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
-  FigureOutcome out{s.exit_code, "", drawn};
+  FigureOutcome out{s.exit_code, "", drawn, s.a.run_seconds};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig6 --preset {}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
                              "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
                              "its fit lines (Eq. e-fit) stand in.\n\n",
@@ -156,7 +156,7 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
     }
   }
   const std::string drawn = draw_figure(o, "fig7", plot, "scaling_collapse.py");
-  FigureOutcome out{s.exit_code, "", drawn};
+  FigureOutcome out{s.exit_code, "", drawn, s.a.run_seconds};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig7 --preset {}`. The sweep of fig6; {} points classified "
                              "logarithmically collapsing, their slopes b per decade of k. Figure: `fig7.png` (and .pdf): (a) b/N^(5/2) "
                              "against X with A = 2.6, (b) with this sweep's A, (c) b/N^(1/2) against N(1 − e).\n\n",
@@ -202,7 +202,7 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
                       plus_minus(x->alpha_fit.intercept, x->alpha_fit.intercept_error), x->alpha_fit.chi2, x->alpha_fit.dof);
   }
   const std::string drawn = draw_figure(o, "fig9", plot, "alpha_vs_n.py");
-  FigureOutcome out{s.exit_code, "", drawn};
+  FigureOutcome out{s.exit_code, "", drawn, s.a.run_seconds};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
                              "n_coll = c k^α fitted over k >= {:g}. Figure: `fig9.png` (and .pdf).\n\n",
                              o.preset, preset_k_min(o));
@@ -248,7 +248,7 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o) {
                          num(f.has_alpha_bar, f.alpha_bar.error), row.ec1, row.ec2, row.alpha);
     }
   write_output(output_path(o, "table1.csv"), csv);
-  FigureOutcome out{s.exit_code, "", output_path(o, "table1.csv")};
+  FigureOutcome out{s.exit_code, "", output_path(o, "table1.csv"), s.a.run_seconds};
   out.markdown = fmt::format("Command: `granchain reproduce --figure table1 --preset {}`. N = 25, 50 at k_B T0 = 1, 2, 4, 10; {}. "
                              "Also `table1.csv`.\n\n",
                              o.preset, s.grid_text);

@@ -26,6 +26,9 @@ struct FigureOutcome {
   int exit_code = 0;
   std::string markdown;
   std::string drawn;  // the figure files, for the command's output ("out/fig6.png (and .pdf)")
+  // The stored wall times of the driven-column runs it analyses, summed (the CPU time they cost
+  // when they ran, in whichever sittings); negative for a figure without such runs.
+  double run_seconds = -1.0;
 };
 
 // One block of a figure's driven-column grid, as texts of `granchain sweep` (lists, ranges).

@@ -195,7 +195,8 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
       md += forms.markdown;
       plot["series"].push_back(js);
     }
-  FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py")};
+  FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
+                    a.run_seconds};
   for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
   return out;
 }

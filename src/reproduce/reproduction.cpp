@@ -110,7 +110,8 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
 
 int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
   int code = kExitOk;
-  std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n| figure | label | result | wall time |\n|---|---|---|---|\n", o.figure, o.preset);
+  std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
+      "| figure | label | result | wall time | CPU time of its runs |\n|---|---|---|---|---|\n", o.figure, o.preset);
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();
@@ -119,13 +120,16 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     code = std::max(code, out.exit_code);
     if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
     if (!out.markdown.empty()) fmt::print("report: {}\n", output_path(o, report_name(f->name)));
-    all += fmt::format("| {} | {} | {} | {} |\n", f->name, f->label,
+    all += fmt::format("| {} | {} | {} | {} | {} |\n", f->name, f->label,
                        out.exit_code == kExitOk ? "done" : out.exit_code == kExitUnphysical ? "done, points failed" : "failed",
-                       format_duration(wall));
+                       format_duration(wall), out.run_seconds >= 0 ? format_duration(out.run_seconds) : "-");
     // One level down: the figure's title becomes a section of the whole report.
     if (!out.markdown.empty()) sections += "\n#" + out.markdown;
   }
   if (is_figure_group(o.figure)) {
+    all += "\nWall time: this command's, for the figure (runs already stored are only read). CPU time of its runs: the "
+           "stored wall times of the driven-column runs the figure analyses, summed over the sittings that ran them; "
+           "figures that share a sweep (fig6, fig7, fig9; fig5 and fig8) count the shared runs in each.\n";
     try {
       write_output(output_path(o, report_name(o.figure)), all + sections);
       fmt::print("report: {}\n", output_path(o, report_name(o.figure)));
