@@ -1,5 +1,6 @@
 // Sweeps: the grid, seeds that depend only on the point, shards, the thread pool, the store's
 // point keys, merging stores and exporting them.
+#include <cmath>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -166,6 +167,27 @@ TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
   EXPECT_TRUE(reports.back().final);
   EXPECT_EQ(reports.back().done, 2u);
   EXPECT_EQ(reports.back().failed, 1u);
+}
+
+// The ETA credits a running point with the simulated time it has covered: a sweep of one point
+// of about a second has a finite ETA before the point is done (the point reports its progress
+// every 0.5 s).
+TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
+  const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e7"}, {"T", "400"}}));
+  ASSERT_EQ(points.size(), 1u);
+  SweepRunner runner(points, {0}, [](const SweepPoint&, const RunResult* r, const std::string& error) { ASSERT_NE(r, nullptr) << error; });
+  std::vector<SweepProgress> reports;
+  runner.run(1, [&](const SweepProgress& p) { reports.push_back(p); }, 0.05);
+  bool finite_before_done = false;
+  for (const SweepProgress& p : reports)
+    if (p.done == 0 && std::isfinite(p.eta)) {
+      finite_before_done = true;
+      EXPECT_GT(p.eta, 0.0);
+    }
+  EXPECT_TRUE(finite_before_done) << reports.size() << " reports";
+  ASSERT_FALSE(reports.empty());
+  EXPECT_EQ(reports.back().done, 1u);
+  EXPECT_EQ(reports.back().eta, 0.0);
 }
 
 TEST(RunJson, RoundTripIsExact) {

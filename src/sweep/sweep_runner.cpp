@@ -1,5 +1,6 @@
 #include "sweep/sweep_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -28,8 +29,10 @@ std::optional<std::size_t> SweepRunner::next() {
   return todo_[handed_out_++];
 }
 
-void SweepRunner::record(std::size_t index, const RunResult* result, const std::string& error) {
+void SweepRunner::record(std::size_t index, const RunResult* result, const std::string& error,
+                         const std::function<void()>& under_lock) {
   std::lock_guard lock(mutex_);
+  if (under_lock) under_lock();
   ++done_;
   if (!result) ++failed_;
   done_cost_ += points_[index].cost;
@@ -50,10 +53,13 @@ SweepProgress SweepRunner::progress() const {
   p.failed = failed_;
   p.total = todo_.size();
   p.elapsed = wall_clock_seconds() - start_;
-  p.eta = done_cost_ > 0 ? p.elapsed * (total_cost_ - done_cost_) / done_cost_
-                         : std::numeric_limits<double>::quiet_NaN();
+  double covered = done_cost_;
   std::uint64_t events = finished_events_;
-  for (int t = 0; t < threads_; ++t) events += live_events_[t].load();
+  for (int t = 0; t < threads_; ++t) {
+    events += live_events_[t].load();
+    covered += live_cost_[t].load();
+  }
+  p.eta = covered > 0 ? p.elapsed * std::max(total_cost_ - covered, 0.0) / covered : std::numeric_limits<double>::quiet_NaN();
   p.collisions_per_second = p.elapsed > 0 ? static_cast<double>(events) / p.elapsed : 0.0;
   return p;
 }
@@ -62,14 +68,22 @@ void SweepRunner::worker(int slot) {
   while (const auto index = next()) {
     const SweepPoint& point = points_[*index];
     live_events_[slot] = 0;
-    ProgressCallback live = [this, slot](const RunProgress& rp) { live_events_[slot] = rp.events; };
+    live_cost_[slot] = 0.0;
+    ProgressCallback live = [this, slot, cost = point.cost](const RunProgress& rp) {
+      live_events_[slot] = rp.events;
+      if (rp.t_total > 0) live_cost_[slot] = cost * std::min(rp.t / rp.t_total, 1.0);
+    };
+    // The point's live counts are cleared under the lock that counts it done, so progress() never
+    // sees a point both running and finished.
+    auto clear_live = [this, slot] {
+      live_events_[slot] = 0;
+      live_cost_[slot] = 0.0;
+    };
     try {
       const RunResult result = run_driven_column(point.spec, live, 0.5);
-      live_events_[slot] = 0;
-      record(*index, &result, "");
+      record(*index, &result, "", clear_live);
     } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point
-      live_events_[slot] = 0;
-      record(*index, nullptr, e.what());
+      record(*index, nullptr, e.what(), clear_live);
     }
   }
 }
@@ -78,6 +92,8 @@ void SweepRunner::run(int threads, const SweepProgressCallback& progress_cb, dou
                       const std::function<void()>& also_run_on_this_thread) {
   threads_ = threads;
   live_events_ = std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(threads));
+  live_cost_ = std::make_unique<std::atomic<double>[]>(static_cast<std::size_t>(threads));
+  for (int t = 0; t < threads; ++t) live_cost_[t] = 0.0;
   start_ = wall_clock_seconds();
 
   std::mutex wait_mutex;

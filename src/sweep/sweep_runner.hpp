@@ -21,7 +21,10 @@ struct SweepProgress {
   std::size_t failed = 0;
   std::size_t total = 0;      // points to run in this invocation
   double elapsed = 0.0;       // wall seconds
-  double eta = 0.0;           // wall seconds left, from the estimated costs; NaN before the first point
+  // Wall seconds left: elapsed × (cost left) / (cost done), the costs from the cost model, the
+  // running points credited with the fraction of their simulated time already covered; NaN before
+  // any progress.
+  double eta = 0.0;
   double collisions_per_second = 0.0;  // collision events of all workers (running points included)
   bool final = false;         // the last report
 };
@@ -45,7 +48,8 @@ class SweepRunner {
   // The queue, for other workers (MPI ranks): the next point to run, or nothing when all are out.
   std::optional<std::size_t> next();
   // A point finished elsewhere: passes it to the sink and counts it.
-  void record(std::size_t index, const RunResult* result, const std::string& error);
+  // under_lock runs first, under the lock that guards the counts.
+  void record(std::size_t index, const RunResult* result, const std::string& error, const std::function<void()>& under_lock = {});
 
   SweepProgress progress() const;
 
@@ -67,6 +71,7 @@ class SweepRunner {
   std::atomic<bool> stop_{false};
 
   std::unique_ptr<std::atomic<std::uint64_t>[]> live_events_;  // per local thread, of its running point
+  std::unique_ptr<std::atomic<double>[]> live_cost_;           // per local thread: cost × fraction of its point done
   int threads_ = 0;
   double start_ = 0.0;
 };
