@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
+#include "reproduce/store_analysis.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 
@@ -51,9 +52,34 @@ std::string export_text(const py::object& db, const std::string& table, const st
   return text;
 }
 
+// The analysis `granchain analyze --json` writes for the runs selected by N, T0 and engine, with
+// fits over k >= k_min (reproduce/store_analysis.hpp), as JSON text.
+std::string analyze_text(const py::object& db, const std::map<std::string, std::vector<double>>& values,
+                         const std::vector<std::string>& engines, double k_min) {
+  const std::string path = path_text(db, "--db");
+  if (!(k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", k_min));
+  ExportSelection sel;
+  for (const auto& [name, list] : values) {
+    if (name != "N" && name != "T0") throw InputError(fmt::format("unknown filter '{}'; valid: N, T0, engine, k_min", name));
+    sel.values[name] = list;
+  }
+  sel.engines = engines;
+  std::string text;
+  try {
+    py::gil_scoped_release nogil;
+    text = analyze_store(path, sel, k_min).json.dump();
+  } catch (const StoreError& e) {
+    throw py::value_error(e.what());
+  }
+  return text;
+}
+
 }  // namespace
 
 void bind_store(py::module_& m) {
+  m.def("_analyze_text", &analyze_text, py::arg("db"), py::arg("values") = std::map<std::string, std::vector<double>>{},
+        py::arg("engines") = std::vector<std::string>{}, py::arg("k_min") = 0.0,
+        "The JSON text of `granchain analyze --json` for the selected runs (store opened read-only).");
   m.def("_export_text", &export_text, py::arg("db"), py::arg("table") = "runs", py::arg("format") = "csv",
         py::arg("values") = std::map<std::string, std::vector<double>>{}, py::arg("engines") = std::vector<std::string>{},
         py::arg("where") = "",

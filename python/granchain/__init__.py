@@ -6,7 +6,7 @@ run() and collapse() are the simulations of ``granchain run`` and ``granchain co
 same code, the same numbers for the same seed); their keyword arguments are the CLI's flags
 (dt_factor for --dt-factor), validated by the CLI's own code, so bad input raises ValueError with
 the message the CLI prints. Both release the GIL: threads run several at once. The theory
-functions are the closed forms of src/theory; Store and export() read a results store;
+functions are the closed forms of src/theory; Store, export() and analyze() read a results store;
 compare_forms() and local_exponents() analyse a count against k. See docs/python.md.
 """
 
@@ -40,7 +40,7 @@ from ._granchain import (  # noqa: F401  (the public API)
     q_ratio,
     run_parameters,
 )
-from .store import Store, export  # noqa: F401
+from .store import Store, analyze, export  # noqa: F401
 
 
 def run(*, N=None, e=None, k=None, T0=None, T=None, transient=None, seed=None, engine=None,

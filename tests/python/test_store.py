@@ -1,6 +1,7 @@
 """granchain.Store / export: the rows `granchain export` gives, typed, with the same filters."""
 
 import csv
+import json
 import io
 import math
 
@@ -91,3 +92,24 @@ def test_bad_selections_raise_value_error_with_the_clis_message(cli, store, tmp_
         granchain.Store(missing)
     assert str(info.value) == cli_error(cli("export", "--db", missing))
     assert not missing.exists()  # read-only: nothing created
+
+
+def test_analyze_gives_what_the_cli_analyze_json_gives(cli, tmp_path):
+    """granchain.analyze is `granchain analyze --json`: N = 3 at e = 0.3 and 0.9 over k = 1e4..1e6."""
+    db = tmp_path / "a.db"
+    p = cli("sweep", "--N", 3, "--e", "0.3,0.9", "--k", "1e4:1e6:x10", "--T", 100, "--db", db, "-q")
+    assert p.returncode == 0, p.stderr
+    ours = granchain.analyze(db, N=3, k_min=1e4)
+    p = cli("analyze", "--db", db, "--N", 3, "--k-min", "1e4", "--json")
+    assert p.returncode == 0, p.stderr
+    theirs = json.loads(p.stdout)
+    theirs.pop("provenance")
+    assert ours == theirs
+    (family,) = ours["families"]
+    assert family["N"] == 3 and [c["e"] for c in family["curves"]] == [0.3, 0.9]
+    assert all(len(c["n_coll_of_k"]) == 3 and c["classified"] for c in family["curves"])
+    assert granchain.Store(db).analyze(N=3, k_min=1e4) == ours
+    assert granchain.analyze(db, N=4)["families"] == []
+    with pytest.raises(ValueError) as info:
+        granchain.analyze(db, k_min=-1)
+    assert str(info.value) == cli_error(cli("analyze", "--db", db, "--k-min", "-1"))
