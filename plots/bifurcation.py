@@ -73,7 +73,8 @@ def main(argv):
     for f in fams:
         tops += [1 - f["e_c1"]["value"] + f["e_c1"]["error"]] if f["e_c1"] else []
         tops += [1 - f["boundary"][0]] if f.get("boundary") else []
-        tops += [1 - f["e_c2_sign"]["value"] + f["e_c2_sign"]["error"]] if f.get("e_c2_sign") else []
+        if f.get("e_c2_sign") and f["e_c2_sign"]["error"] < 0.05:
+            tops.append(1 - f["e_c2_sign"]["value"] + f["e_c2_sign"]["error"])
         if f["e_c2"] and f["e_c2"]["high"] - f["e_c2"]["low"] < 0.05:
             tops.append(1 - f["e_c2"]["low"])
     ax.set_ylim(0, 1.15 * max(tops))

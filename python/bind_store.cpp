@@ -60,7 +60,7 @@ std::string analyze_text(const py::object& db, const std::map<std::string, std::
   if (!(k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", k_min));
   ExportSelection sel;
   for (const auto& [name, list] : values) {
-    if (name != "N" && name != "T0") throw InputError(fmt::format("unknown filter '{}'; valid: N, T0, engine, k_min", name));
+    if (name != "N" && name != "T0") throw InputError(fmt::format("unknown filter '{}'; valid: N, T0", name));
     sel.values[name] = list;
   }
   sel.engines = engines;

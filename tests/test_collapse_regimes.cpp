@@ -410,6 +410,8 @@ TEST(CollapseRegimes, AcrossNFitsTheBoundaryAndTheCurvatureSignChange) {
   }
   ASSERT_TRUE(a.has_A1_boundary);
   EXPECT_NEAR(a.A1_boundary.A, 2.7, 1e-9);
+  // Every N's bracket is the same step 0.2 in c: the rounding is shared, A's error its 0.2 / sqrt 12.
+  EXPECT_NEAR(a.A1_boundary.A_error, 0.2 / std::sqrt(12.0), 1e-9);
   EXPECT_EQ(a.A1_boundary.dof, 2);
   ASSERT_TRUE(a.has_A2_sign);
   EXPECT_NEAR(a.A2_sign.A, 3.0, 1e-5);

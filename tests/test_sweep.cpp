@@ -170,14 +170,15 @@ TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
 }
 
 // The ETA credits a running point with the simulated time it has covered: a sweep of one point
-// of about a second has a finite ETA before the point is done (the point reports its progress
-// every 0.5 s).
+// (a fraction of a second or more) has a finite ETA before the point is done, the point reporting
+// its progress every millisecond.
 TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e7"}, {"T", "400"}}));
   ASSERT_EQ(points.size(), 1u);
   SweepRunner runner(points, {0}, [](const SweepPoint&, const RunResult* r, const std::string& error) { ASSERT_NE(r, nullptr) << error; });
+  runner.set_point_progress_every(0.001);
   std::vector<SweepProgress> reports;
-  runner.run(1, [&](const SweepProgress& p) { reports.push_back(p); }, 0.05);
+  runner.run(1, [&](const SweepProgress& p) { reports.push_back(p); }, 0.01);
   bool finite_before_done = false;
   for (const SweepProgress& p : reports)
     if (p.done == 0 && std::isfinite(p.eta)) {

@@ -274,11 +274,19 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
     EXPECT_NE(all.find(std::string(fig)), std::string::npos) << fig;
   EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
   // The runs' stored wall times are summed per figure: none for the sketches, some for fig6.
-  EXPECT_NE(all.find("| CPU time of its runs |"), std::string::npos);
-  EXPECT_NE(all.find("| fig1 | 1dmodel | done |"), std::string::npos);
-  const std::size_t fig6_row = all.find("| fig6 |");
-  const std::string row = all.substr(fig6_row, all.find('\n', fig6_row) - fig6_row);
-  EXPECT_EQ(row.substr(row.size() - 4), " s |") << row;
+  EXPECT_NE(all.find("| its runs' time, summed |"), std::string::npos);
+  auto row_of = [&all](const std::string& figure) {
+    const std::size_t at = all.find("| " + figure + " |");
+    return at == std::string::npos ? std::string() : all.substr(at, all.find('\n', at) - at);
+  };
+  const std::string fig1 = row_of("fig1"), fig6 = row_of("fig6");
+  ASSERT_GT(fig1.size(), 6u);
+  EXPECT_EQ(fig1.substr(fig1.size() - 5), "| - |") << fig1;
+  // fig6's last cell: "x.y s" (the smoke runs take well under two minutes), above zero.
+  const std::size_t cell = fig6.rfind("| ", fig6.size() - 3);
+  ASSERT_NE(cell, std::string::npos) << fig6;
+  EXPECT_GT(std::stod(fig6.substr(cell + 2)), 0.0) << fig6;
+  EXPECT_EQ(fig6.substr(fig6.size() - 4), " s |") << fig6;
   const std::string csv = slurp(dir_ / "figs/table1.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 8) << csv;
   EXPECT_EQ(csv.rfind("N,kT0,e_c1,e_c1_err,boundary_low,boundary_high,e_c2_low,e_c2_high,e_c2_sign,e_c2_sign_err,", 0), 0u) << csv;

@@ -174,6 +174,9 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
     const double r = a / b;
     cv.low = c[i - 1].x;
     cv.high = c[i].x;
+    // A zero outside the points the line was fitted to is an extrapolation: not claimed.
+    const auto [lo, hi] = std::minmax_element(near.begin(), near.end(), [](const DataPoint& p, const DataPoint& q) { return p.x < q.x; });
+    if (-r < lo->x || -r > hi->x) return cv;
     cv.value = mid - r;
     // delta method for -a/b: var = (var a - 2 r cov(a, b) + r^2 var b) / b^2
     const double var = (f.error[0] * f.error[0] - 2 * r * f.covariance01 + r * r * f.error[1] * f.error[1]) / (b * b);

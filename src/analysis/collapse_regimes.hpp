@@ -86,7 +86,8 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
 // Scanning down from the largest e, the first e with a positive curvature and the e above it
 // bracket the change (low, high); a weighted straight line through the curvatures within
 // half_width of the bracket (on a grid too coarse for three of them, such as fig6's e = 1 - c/N,
-// the three nearest to it) gives the zero and, from its covariance, the error. Without a sign change, or with a line that does not fall with e: not found. Unlike
+// the three nearest to it) gives the zero and, from its covariance, the error; a zero outside the
+// e range of those points (an extrapolation) is not claimed. Without a sign change, or with a line that does not fall with e: not found. Unlike
 // e_c2_from_regimes this asks for no significance, so it does not move down to where the
 // curvature becomes resolvable.
 CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width = 0.0061);

@@ -57,7 +57,9 @@ struct AcrossN {  // one (engine, kT0), over N
   InverseNFit A1, A2;  // e_c1 (b -> 0), e_c2 (convex by 2 errors / not: the bracket)
   // The same fits of the classification boundary (its midpoint, with the bracket's half-width /
   // sqrt 3, the standard deviation of a uniform position within it) and of e_c2 where the
-  // curvature changes sign (the paper's reading).
+  // curvature changes sign (the paper's reading). The fits of brackets (A2, A1_boundary) have an
+  // error of at least the fit-weighted mean bracket width in c = N (1 - e) over sqrt 12: on a grid
+  // in c the rounding to the grid is shared by every N.
   bool has_A1_boundary = false, has_A2_sign = false;
   InverseNFit A1_boundary, A2_sign;
   LineFit alpha_fit;   // alpha bar against log10 N

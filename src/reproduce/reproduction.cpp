@@ -111,7 +111,7 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
 int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
   int code = kExitOk;
   std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
-      "| figure | label | result | wall time | CPU time of its runs |\n|---|---|---|---|---|\n", o.figure, o.preset);
+      "| figure | label | result | wall time | its runs' time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();
@@ -127,9 +127,10 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     if (!out.markdown.empty()) sections += "\n#" + out.markdown;
   }
   if (is_figure_group(o.figure)) {
-    all += "\nWall time: this command's, for the figure (runs already stored are only read). CPU time of its runs: the "
-           "stored wall times of the driven-column runs the figure analyses, summed over the sittings that ran them; "
-           "figures that share a sweep (fig6, fig7, fig9; fig5 and fig8) count the shared runs in each.\n";
+    all += "\nWall time: this command's, for the figure (runs already stored are only read). Its runs' time: the stored "
+           "wall times of the driven-column runs the figure analyses, summed over the sittings that ran them (CPU time "
+           "when no more points ran at once than there were cores); figures that share runs (fig6, fig7, fig9 and "
+           "Table 1's k_B T0 = 1; fig5 and fig8) count them in each.\n";
     try {
       write_output(output_path(o, report_name(o.figure)), all + sections);
       fmt::print("report: {}\n", output_path(o, report_name(o.figure)));

@@ -277,14 +277,14 @@ std::string analysis_text(const StoreAnalysis& a) {
                          f.replicas_worst_k);
   }
   for (const auto& a : a.report.across) {
-    if (!(a.has_A1 || a.has_A2 || a.has_alpha_fit)) continue;
+    if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit)) continue;
     out += fmt::format("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
     if (a.has_A1_boundary)
-      out += fmt::format("  (classification boundary: A = {}; e_c2 where the curvature changes sign: A = {})",
-                         plus_minus(a.A1_boundary.A, a.A1_boundary.A_error, 2),
-                         a.has_A2_sign ? plus_minus(a.A2_sign.A, a.A2_sign.A_error, 2) : std::string("-"));
+      out += fmt::format("  1 - (classification boundary) = A/N with A = {}", plus_minus(a.A1_boundary.A, a.A1_boundary.A_error, 2));
+    if (a.has_A2_sign)
+      out += fmt::format("  1 - e_c2 (curvature changes sign) = A/N with A = {}", plus_minus(a.A2_sign.A, a.A2_sign.A_error, 2));
     if (a.has_alpha_fit)
       out += fmt::format("  alpha bar = ({}) log10 N + ({})", plus_minus(a.alpha_fit.slope, a.alpha_fit.slope_error),
                  plus_minus(a.alpha_fit.intercept, a.alpha_fit.intercept_error));

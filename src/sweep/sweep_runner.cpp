@@ -80,7 +80,7 @@ void SweepRunner::worker(int slot) {
       live_cost_[slot] = 0.0;
     };
     try {
-      const RunResult result = run_driven_column(point.spec, live, 0.5);
+      const RunResult result = run_driven_column(point.spec, live, point_progress_every_);
       record(*index, &result, "", clear_live);
     } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point
       record(*index, nullptr, e.what(), clear_live);

@@ -53,6 +53,9 @@ class SweepRunner {
 
   SweepProgress progress() const;
 
+  // How often (wall seconds) a running point reports how far it has got; 0.5 unless set.
+  void set_point_progress_every(double seconds) { point_progress_every_ = seconds; }
+
  private:
   void worker(int slot);
 
@@ -73,6 +76,7 @@ class SweepRunner {
   std::unique_ptr<std::atomic<std::uint64_t>[]> live_events_;  // per local thread, of its running point
   std::unique_ptr<std::atomic<double>[]> live_cost_;           // per local thread: cost × fraction of its point done
   int threads_ = 0;
+  double point_progress_every_ = 0.5;
   double start_ = 0.0;
 };
 
