@@ -303,6 +303,28 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
   EXPECT_EQ(all.find("limit-free"), std::string::npos);  // the group beyond is not part of all
 }
 
+// --stored-only runs nothing: it refuses a store that does not exist, draws a figure from the part
+// of its runs that is stored (saying how many are missing), leaves the store as it was, and fails
+// a figure none of whose runs is stored.
+TEST_F(SweepCli, StoredOnlyDrawsFromWhatIsStoredAndRunsNothing) {
+  const CliResult none = run("reproduce --figure fig8 --preset smoke --db s.db --out figs --stored-only");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("--db: 's.db' does not exist; --stored-only"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir_ / "s.db"));
+  ASSERT_EQ(run("reproduce --figure fig5 --preset smoke --db s.db --out figs -q").exit_code, 0);
+  const auto stored = query(dir_ / "s.db", "SELECT count(*) FROM runs");
+  // fig8 shares fig5's runs at the largest k except e = 0.91 and 0.92.
+  const CliResult part = run("reproduce --figure fig8 --preset smoke --db s.db --out figs --stored-only");
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  EXPECT_NE(part.err.find("12 runs, 10 in s.db; --stored-only: drawn from those, 2 missing"), std::string::npos) << part.err;
+  EXPECT_TRUE(fs::exists(dir_ / "figs/fig8.png"));
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
+  const CliResult empty = run("reproduce --figure fig3 --preset smoke --db s.db --out figs --stored-only");
+  EXPECT_NE(empty.exit_code, 0);
+  EXPECT_NE(empty.err.find("fig3: none of its"), std::string::npos) << empty.err;
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
+}
+
 // The group beyond on tiny grids: its three figures and reports exist, the forms are compared
 // where four k are fitted, the hard-sphere launches collapse, and a repeat reuses every stored
 // count and run.

@@ -29,6 +29,9 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
       throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
     // As sweep validates it; an empty value is given, and refused.
     if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
+    if (o.stored_only && o.print_sweeps) throw InputError("--stored-only and --print-sweeps exclude each other: both run nothing, one draws, one prints");
+    if (o.stored_only && !std::filesystem::exists(o.db))
+      throw InputError(fmt::format("--db: '{}' does not exist; --stored-only draws from the runs of an existing store", o.db));
     ResultsStore::preflight(o.db);
     if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
       std::error_code ec;
@@ -92,6 +95,10 @@ Subcommand add_reproduce_command(CLI::App& app) {
       sub_->add_option("--threads", *threads_text, "points run at once; integer 1 <= threads <= 1024; default all cores")
           ->type_name("INT");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
+  sub_->add_flag("--stored-only", impl_->stored_only,
+                 "run nothing: analyse and draw each figure from the runs already in --db (a look at a long reproduction while "
+                 "it runs; the reports give the number of runs used). A figure with none of its runs stored, or a free-space "
+                 "count missing, fails");
   sub_->add_flag("--print-sweeps", impl_->print_sweeps,
                  "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
                  "into one store; reproduce --db STORE then reuses every point) and run nothing");

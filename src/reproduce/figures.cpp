@@ -60,6 +60,9 @@ CollapseSpec free_space_spec(int N, double e, double k, int launches, const Repr
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
   ResultsStore store(o.db);
   if (std::optional<CollapseResult> stored = store.find_collapse(spec)) return *stored;
+  if (o.stored_only)
+    throw std::runtime_error(fmt::format("the free-space count N = {}, e = {:g}, k = {:g} ({} launches) is not in {} (--stored-only runs nothing)",
+                                         spec.params.N, spec.params.e, spec.params.k, spec.realizations, o.db));
   if (!o.quiet)
     fmt::print(stderr, "reproduce {}: N = {}, e = {:g}, k = {:g}, {} launches\n", label, spec.params.N, spec.params.e, spec.params.k,
                spec.realizations);
@@ -72,6 +75,14 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
   std::vector<std::string> failures;
   ResultsStore store(o.db);
   const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
+  if (o.stored_only) {
+    if (todo.size() == points.size())
+      throw std::runtime_error(fmt::format("none of its {} runs is in {} yet (--stored-only runs nothing)", points.size(), o.db));
+    if (!o.quiet)
+      fmt::print(stderr, "reproduce {} ({}): {} runs, {} in {}; --stored-only: drawn from those, {} missing\n", label, o.preset,
+                 points.size(), points.size() - todo.size(), o.db, todo.size());
+    return failures;
+  }
   if (!o.quiet)
     fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", label, o.preset, points.size(),
                points.size() - todo.size(), o.db, todo.size(), o.threads);

@@ -16,6 +16,7 @@ struct ReproduceFlags {
   int threads = 0;  // resolved to all cores before a figure runs
   bool quiet = false;
   bool print_sweeps = false;  // print the equivalent `granchain sweep` commands and run nothing
+  bool stored_only = false;   // run nothing: analyse and draw the points already stored
   bool paper() const { return preset == "paper"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
 };

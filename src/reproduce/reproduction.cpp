@@ -127,6 +127,9 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     if (!out.markdown.empty()) sections += "\n#" + out.markdown;
   }
   if (is_figure_group(o.figure)) {
+    if (o.stored_only)
+      all += "\n--stored-only: nothing was run; each figure is drawn from those of its runs that were stored (its section "
+             "gives how many).\n";
     all += "\nWall time: this command's, for the figure (runs already stored are only read). Its runs' time: the stored "
            "wall times of the driven-column runs the figure analyses, summed over the sittings that ran them (CPU time "
            "when no more points ran at once than there were cores); figures that share runs (fig6, fig7, fig9 and "
