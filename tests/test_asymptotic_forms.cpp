@@ -153,3 +153,29 @@ TEST(AsymptoticForms, SlopeTrendFindsAPlantedDrift) {
   EXPECT_LT(u.constant_z, 4.0);
   EXPECT_NEAR(u.mean, 0.2, 4 * u.mean_error);
 }
+
+// trend() on values y(x) with independent errors (Table 1 against log10 T0): exact values on a line
+// give its slope with the error of a weighted line fit, sigma / sqrt(sum (x - mean x)^2), and a
+// constant set a chi^2 of zero and a slope of zero.
+TEST(AsymptoticForms, TrendOfValuesAgainstX) {
+  const std::vector<double> x = {0.0, std::log10(2.0), std::log10(4.0), 1.0};
+  std::vector<DataPoint> line, flat;
+  for (double xi : x) {
+    line.push_back({xi, 0.9 - 0.02 * xi, 0.004});
+    flat.push_back({xi, 0.2, 0.01});
+  }
+  const SlopeTrend l = trend(line), f = trend(flat);
+  double mx = 0, sxx = 0;
+  for (double xi : x) mx += xi / x.size();
+  for (double xi : x) sxx += (xi - mx) * (xi - mx);
+  EXPECT_NEAR(l.slope, -0.02, 1e-12);
+  EXPECT_NEAR(l.slope_error, 0.004 / std::sqrt(sxx), 1e-12);
+  EXPECT_EQ(l.constant_dof, 3);
+  EXPECT_GT(l.constant_chi2, 10.0);  // the line is far from a constant at these errors
+  EXPECT_NEAR(f.mean, 0.2, 1e-15);
+  EXPECT_NEAR(f.mean_error, 0.01 / 2, 1e-15);
+  EXPECT_NEAR(f.constant_chi2, 0.0, 1e-20);
+  EXPECT_NEAR(f.slope, 0.0, 1e-12);
+  // Two values: a mean and its chi^2, no line.
+  EXPECT_TRUE(std::isnan(trend({{0.0, 1.0, 0.1}, {1.0, 1.2, 0.1}}).slope));
+}

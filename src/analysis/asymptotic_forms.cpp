@@ -169,11 +169,17 @@ std::vector<LocalExponent> local_exponents(const std::vector<double>& k, const s
 }
 
 SlopeTrend slope_trend(const std::vector<LocalExponent>& local) {
+  std::vector<DataPoint> pts;
+  for (const auto& l : local) pts.push_back({0.5 * std::log10(l.k1 * l.k2), l.alpha, l.error});
+  return trend(pts);
+}
+
+SlopeTrend trend(const std::vector<DataPoint>& points) {
   SlopeTrend t;
   t.slope = t.slope_error = std::numeric_limits<double>::quiet_NaN();
   std::vector<DataPoint> pts;
-  for (const auto& l : local)
-    if (std::isfinite(l.alpha) && l.error > 0) pts.push_back({0.5 * std::log10(l.k1 * l.k2), l.alpha, l.error});
+  for (const auto& p : points)
+    if (std::isfinite(p.y) && p.error > 0) pts.push_back(p);
   if (pts.empty()) {
     t.mean = t.mean_error = std::numeric_limits<double>::quiet_NaN();
     return t;

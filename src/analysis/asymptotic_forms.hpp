@@ -71,5 +71,8 @@ struct SlopeTrend {
   double slope = 0, slope_error = 0;  // per decade of k; NaN with fewer than 3 exponents
 };
 SlopeTrend slope_trend(const std::vector<LocalExponent>& local);
+// The same for any values y(x) with independent errors (x = log10 k_B T0 for Table 1's critical
+// values and exponents): the constant's mean and chi^2, the line's slope per unit x.
+SlopeTrend trend(const std::vector<DataPoint>& points);
 
 }  // namespace granchain::analysis
