@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The cost model (src/sweep/cost_model.hpp) against the wall time of the runs in a results store:
 # each stored run of a preset's sweeps is matched by its seed to the cost that `sweep --dry-run`
-# predicts for it, and the ratio predicted / measured is summarised per N.
+# predicts for it, and the ratio predicted / measured is summarised per N. Measured: the run's
+# thread CPU time where the store has it (runs stored since it was recorded), else its wall time,
+# which a loaded machine stretches.
 #
 #   bash bench/cost_model_check.sh STORE [--granchain build/granchain] [--preset paper] [--list FILE]
 #                                        [--seeds odd|even]
@@ -33,7 +35,8 @@ bash "$(dirname "$0")/preset_points.sh" "$granchain" "$preset" | awk '{ print $4
 # seed -> N e k T0 measured seconds, from the store.
 "$granchain" export --db "$store" | awk -F, '
   NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-  $c["setup"] == "driven_column" { print $c["seed"], $c["N"], $c["e"], $c["k"], $c["T0"], $c["T"], $c["transient"], $c["wall_seconds"] }' |
+  $c["setup"] == "driven_column" { t = ("cpu_seconds" in c && $c["cpu_seconds"] != "") ? $c["cpu_seconds"] : $c["wall_seconds"]
+                                   print $c["seed"], $c["N"], $c["e"], $c["k"], $c["T0"], $c["T"], $c["transient"], t }' |
   sort > "$work/measured"
 join "$work/predicted" "$work/measured" | awk '{ print $3, $4, $5, $6, $7, $8, $2, $9, $1 }' > "$work/pairs"
 [[ -n "$list" ]] && cp "$work/pairs" "$list"

@@ -98,6 +98,7 @@ py::dict result_dict(const RunResult& r, const std::string& json_text, const std
   cost["steps"] = r.steps;
   cost["events"] = r.events;
   cost["wall_seconds"] = r.wall_seconds;
+  cost["cpu_seconds"] = r.cpu_seconds;
   d["cost"] = cost;
   if (r.spec.engine.audit) {
     py::dict audit;

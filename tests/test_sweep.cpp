@@ -191,6 +191,19 @@ TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   EXPECT_EQ(reports.back().eta, 0.0);
 }
 
+// A run records the CPU time of its thread beside its wall time (at most the wall time: one thread),
+// the JSON keeps it, and a run stored before it was recorded reads back as NaN.
+TEST(RunJson, CpuTimeIsRecordedAndReadBack) {
+  const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e6"}, {"T", "50"}}));
+  const RunResult r = run_driven_column(points.front().spec);
+  EXPECT_GT(r.cpu_seconds, 0.0);
+  EXPECT_LE(r.cpu_seconds, r.wall_seconds + 0.01);
+  nlohmann::json j = run_result_to_json(r);
+  EXPECT_EQ(run_result_from_json(nlohmann::json::parse(j.dump())).cpu_seconds, r.cpu_seconds);
+  j["cost"].erase("cpu_seconds");
+  EXPECT_TRUE(std::isnan(run_result_from_json(j).cpu_seconds));
+}
+
 TEST(RunJson, RoundTripIsExact) {
   const auto points = build_sweep_points(small_grid());
   const RunResult r = run_driven_column(points.front().spec);

@@ -60,7 +60,7 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
                        format_estimate(q.kinetic));
   }
   out += "\n";
-  out += fmt::format("  cost: {} steps, {} events, {:.3g} s wall\n", r.steps, r.events, r.wall_seconds);
+  out += fmt::format("  cost: {} steps, {} events, {:.3g} s wall, {:.3g} s CPU\n", r.steps, r.events, r.wall_seconds, r.cpu_seconds);
   if (r.spec.engine.audit)
     out += fmt::format("  audit: {} values at {} instants between events, none of the wrong sign\n", r.audit_values,
                        r.audit_instants);

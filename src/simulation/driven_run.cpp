@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fmt/format.h>
 
 #include "model/driven_column.hpp"
@@ -16,10 +17,17 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+// The CPU time this thread has used (a run stays on the thread that starts it).
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 }  // namespace
 
 RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progress, double progress_every) {
   const auto wall0 = Clock::now();
+  const double cpu0 = thread_cpu_seconds();
   RunResult r;
   r.spec = spec;
   r.law = contact_law(spec.params);
@@ -89,6 +97,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.steps = c.steps;
   r.events = c.contact_ends + c.floor_hits;
   r.wall_seconds = seconds_since(wall0);
+  r.cpu_seconds = thread_cpu_seconds() - cpu0;
   // The audit evaluated every overlap, gap and the floor height at random instants between
   // events: a value of the wrong sign means an event was missed, and the run is not a result.
   if (c.audit_violations > 0) {

@@ -45,6 +45,9 @@ struct RunResult {
   std::uint64_t steps = 0;        // engine steps, transient included
   std::uint64_t events = 0;       // contact ends + floor hits, transient included
   double wall_seconds = 0.0;
+  // CPU time of the thread that ran it: unlike wall_seconds, not stretched when more runs share the
+  // machine than it has cores (NaN for a result read from a run stored without it).
+  double cpu_seconds = 0.0;
   // Exact engine with its audit on (EngineChoice::audit): instants and values checked between
   // events, transient included. A value of the wrong sign is an error (run_driven_column throws).
   std::uint64_t audit_instants = 0, audit_values = 0;

@@ -55,7 +55,7 @@ json run_result_to_json(const RunResult& r) {
                                {"particle_collisions", r.particle_collisions},
                                {"floor_hits", r.floor_hits}}},
               {"profiles", profiles},
-              {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}}}};
+              {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}, {"cpu_seconds", r.cpu_seconds}}}};
   auto halves = [](const StationarityCheck& c) {
     return json{{"first", c.first.value}, {"first_err", c.first.error}, {"second", c.second.value},
                 {"second_err", c.second.error}, {"z", c.z}, {"stationary", c.stationary}};
@@ -144,6 +144,7 @@ RunResult run_result_from_json(const json& j) {
   r.steps = c.at("steps").get<std::uint64_t>();
   r.events = c.at("events").get<std::uint64_t>();
   r.wall_seconds = c.at("wall_seconds").get<double>();
+  r.cpu_seconds = c.contains("cpu_seconds") ? c.at("cpu_seconds").get<double>() : std::numeric_limits<double>::quiet_NaN();
   return r;
 }
 

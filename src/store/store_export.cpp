@@ -15,9 +15,10 @@ const char* source_sql(ExportTable t) {
   switch (t) {
     case ExportTable::Runs:
       // stationary: the run's verdict on its window (1 or 0) from its JSON; NULL for runs stored
-      // before runs checked it.
+      // before runs checked it. cpu_seconds: the CPU time of the run's thread, NULL likewise.
       return "SELECT r.*, p.point_key, p.sweep_seed, p.replica, "
-             "json_extract(r.result_json, '$.stationarity.stationary') AS stationary "
+             "json_extract(r.result_json, '$.stationarity.stationary') AS stationary, "
+             "json_extract(r.result_json, '$.cost.cpu_seconds') AS cpu_seconds "
              "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
     case ExportTable::Profiles:
       return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
