@@ -2,8 +2,9 @@
 # A Slurm job array that runs one granchain sweep in SHARDS shards, one store per shard.
 #
 #   bash scripts/slurm-sweep-array.sh               submit all shards (creates shards/ for the logs)
-#   bash scripts/slurm-sweep-array.sh --array=7     resubmit shard 7 (killed by a time limit, a node
-#                                                   failure): it resumes where it stopped
+#   bash scripts/slurm-sweep-array.sh --array=7     resubmit shard 7 (one that exited 75, having left
+#                                                   points its walltime could not hold, or one killed
+#                                                   by a node failure): it resumes where it stopped
 #   ./build/granchain merge --into fig4.db shards/fig4-*.db     join the shards when all have finished
 #
 # Run from the repository root. Outside a job the script submits itself with sbatch (extra
@@ -29,6 +30,8 @@ if ! [[ "$i" =~ ^[0-9]+$ ]] || [ "$i" -lt 1 ] || [ "$i" -gt "$SHARDS" ]; then
   exit 2
 fi
 mkdir -p shards
-# The paper's Fig. 4 grid for N = 25: e from 0.80 to 0.998, six values of k, T = 1e4.
+# The paper's Fig. 4 grid for N = 25: e from 0.80 to 0.998, six values of k, T = 1e4. The time
+# limit, half an hour inside the job's --time, starts only points predicted to end before the job is
+# killed; a shard with points left exits 75 and is resubmitted with --array=i.
 "$GRANCHAIN" sweep --N 25 --e 0.80:0.998:0.002 --k 1e5:1e10:x10 --T 1e4 --seed 1 \
-    --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig4-$i.db" --progress -q
+    --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig4-$i.db" --time-limit 23.5h --progress -q

@@ -193,6 +193,30 @@ TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
 
 // A run records the CPU time of its thread beside its wall time (at most the wall time: one thread),
 // the JSON keeps it, and a run stored before it was recorded reads back as NaN.
+// With a time limit only the points predicted to end within it are handed out: two points whose
+// estimate is a million seconds are skipped, the small ones after them run, and the skipped ones
+// are counted for the repeat.
+TEST(SweepRunner, ATimeLimitSkipsPointsThatCannotEndWithinIt) {
+  auto points = build_sweep_points(definition({{"N", "3"}, {"e", "0.5,0.6,0.7,0.8"}, {"k", "1e4"}, {"T", "20"}}));
+  ASSERT_EQ(points.size(), 4u);
+  for (std::size_t i = 0; i < points.size(); ++i) points[i].cost = i % 2 == 0 ? 1e6 : 1e-3;
+  std::vector<std::size_t> ran;
+  SweepRunner runner(points, {0, 1, 2, 3}, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+    ASSERT_NE(r, nullptr) << error;
+    ran.push_back(static_cast<std::size_t>(&p - points.data()));
+  });
+  runner.set_time_limit(3600.0);
+  runner.run(2);
+  std::sort(ran.begin(), ran.end());
+  EXPECT_EQ(ran, (std::vector<std::size_t>{1, 3}));
+  EXPECT_EQ(runner.not_started(), 2u);
+  EXPECT_DOUBLE_EQ(runner.not_started_cost(), 2e6);
+  // Without a limit every point is handed out.
+  SweepRunner all(points, {0, 1, 2, 3}, [](const SweepPoint&, const RunResult*, const std::string&) {});
+  all.run(1);
+  EXPECT_EQ(all.not_started(), 0u);
+}
+
 TEST(RunJson, CpuTimeIsRecordedAndReadBack) {
   const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e6"}, {"T", "50"}}));
   const RunResult r = run_driven_column(points.front().spec);

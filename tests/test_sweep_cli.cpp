@@ -325,6 +325,26 @@ TEST_F(SweepCli, StoredOnlyDrawsFromWhatIsStoredAndRunsNothing) {
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
 }
 
+// --time-limit: a sweep whose points are all predicted to outlast the limit starts none and exits
+// 75 (try again); one whose points fit runs them all; reproduce stops before drawing a figure with
+// runs left; a bad duration is refused.
+TEST_F(SweepCli, ATimeLimitLeavesWhatCannotEndInItForARepeat) {
+  const CliResult none = run("sweep --N 150 --e 0.5 --k 1e10 --T 1e4 --db t.db --time-limit 1 -q");
+  EXPECT_EQ(none.exit_code, 75) << none.err;
+  EXPECT_NE(none.err.find("--time-limit: 1 points not started"), std::string::npos) << none.err;
+  EXPECT_EQ(query(dir_ / "t.db", "SELECT count(*) FROM runs"), 0);
+  const CliResult fits = run("sweep --N 3 --e 0.5,0.9 --k 1e4 --T 20 --db t.db --time-limit 1h -q");
+  EXPECT_EQ(fits.exit_code, 0) << fits.err;
+  EXPECT_EQ(query(dir_ / "t.db", "SELECT count(*) FROM runs"), 2);
+  const CliResult figure = run("reproduce --figure fig5 --preset paper --db t.db --out figs --time-limit 1 -q");
+  EXPECT_EQ(figure.exit_code, 75) << figure.err;
+  EXPECT_NE(figure.err.find("fig5: --time-limit:"), std::string::npos) << figure.err;
+  EXPECT_FALSE(fs::exists(dir_ / "figs/report.md"));
+  const CliResult bad = run("sweep --N 3 --T 20 --db t.db --time-limit 2x");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--time-limit = '2x' is not a duration"), std::string::npos) << bad.err;
+}
+
 // The group beyond on tiny grids: its three figures and reports exist, the forms are compared
 // where four k are fitted, the hard-sphere launches collapse, and a repeat reuses every stored
 // count and run.

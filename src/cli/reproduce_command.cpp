@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <thread>
 
@@ -20,8 +21,9 @@ namespace granchain {
 namespace {
 
 // threads_text: the --threads value as given, or null when the flag was not given.
-int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text) {
+int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text, const std::string* time_limit_text) {
   ReproduceFlags o = *impl_;
+  o.started_at = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   const std::vector<const FigureEntry*> chosen = chosen_figures(o.figure);
   try {
     if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all, beyond", o.figure, figure_names()));
@@ -29,6 +31,7 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
       throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
     // As sweep validates it; an empty value is given, and refused.
     if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
+    if (time_limit_text) o.time_limit = parse_duration(*time_limit_text, "--time-limit");
     if (o.stored_only && o.print_sweeps) throw InputError("--stored-only and --print-sweeps exclude each other: both run nothing, one draws, one prints");
     if (o.stored_only && !std::filesystem::exists(o.db))
       throw InputError(fmt::format("--db: '{}' does not exist; --stored-only draws from the runs of an existing store", o.db));
@@ -94,6 +97,12 @@ Subcommand add_reproduce_command(CLI::App& app) {
   CLI::Option* threads_option =
       sub_->add_option("--threads", *threads_text, "points run at once; integer 1 <= threads <= 1024; default all cores")
           ->type_name("INT");
+  auto time_limit_text = std::make_shared<std::string>();
+  CLI::Option* time_limit_option =
+      sub_->add_option("--time-limit", *time_limit_text,
+                       "a batch job's walltime: start only runs predicted to end within it (as sweep --time-limit); when runs "
+                       "are left, stop before drawing that figure and exit 75 (repeat the command to resume); seconds, or 90m, 2.5h")
+          ->type_name("DURATION");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
   sub_->add_flag("--stored-only", impl_->stored_only,
                  "run nothing: analyse and draw each figure from the runs already in --db (a look at a long reproduction while "
@@ -102,8 +111,9 @@ Subcommand add_reproduce_command(CLI::App& app) {
   sub_->add_flag("--print-sweeps", impl_->print_sweeps,
                  "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
                  "into one store; reproduce --db STORE then reuses every point) and run nothing");
-  return {sub_, [impl_, threads_option, threads_text] {
-            return execute_reproduce(impl_, threads_option->count() > 0 ? threads_text.get() : nullptr);
+  return {sub_, [impl_, threads_option, threads_text, time_limit_option, time_limit_text] {
+            return execute_reproduce(impl_, threads_option->count() > 0 ? threads_text.get() : nullptr,
+                                     time_limit_option->count() > 0 ? time_limit_text.get() : nullptr);
           }};
 }
 

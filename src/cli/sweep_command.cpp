@@ -32,7 +32,7 @@ struct SweepFlags {
   std::map<std::string, std::string> flag_values;
   std::map<std::string, CLI::Option*> flag_options;
   std::string sweep_path;
-  std::string replicas, threads, shard;
+  std::string replicas, threads, shard, time_limit;
   double progress_every = 0;
   bool dry_run = false, quiet = false, progress_lines = false;
 };
@@ -108,6 +108,10 @@ Subcommand add_sweep_command(CLI::App& app) {
       ->type_name("INT");
   sub_->add_option("--shard", impl.shard, "run only share i of n of the grid (1 <= i <= n <= 100000), for job arrays")
       ->type_name("i/n");
+  sub_->add_option("--time-limit", impl.time_limit,
+                   "a batch job's walltime: start only points predicted (cost model, scaled by the points finished) to end "
+                   "within it, leave the rest for a repeat of the command, and exit 75; seconds, or 90m, 2.5h")
+      ->type_name("DURATION");
   sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost) and what the store already holds; run nothing");
   sub_->add_flag("--quiet,-q", impl.quiet, "print no table of results, no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines, "print progress on standard error even with --quiet");
@@ -131,6 +135,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   SweepDefinition def;
   std::string db_path = "granchain.db";
   int threads = 0, shard_i = 1, shard_n = 1;
+  double time_limit = 0;  // seconds; 0: none
   std::vector<SweepPoint> points;
   try {
     if (launched_by_mpi_launcher() && !built_with_mpi())
@@ -166,6 +171,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       def.replicas = static_cast<int>(integer_in("--replicas", v->text, 1, 1000000));
     if (given("--threads")) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
     if (given("--shard")) std::tie(shard_i, shard_n) = parse_shard(impl.shard);
+    if (given("--time-limit")) time_limit = parse_duration(impl.time_limit, "--time-limit");
     if (sub_->get_option("--progress-every")->count() > 0 && !(impl.progress_every > 0))
       throw InputError(fmt::format("--progress-every = {} is out of range; valid range: > 0", impl.progress_every));
     points = build_sweep_points(def);
@@ -244,6 +250,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                  shard_n > 1 ? fmt::format(" (shard {}/{})", shard_i, shard_n) : "", already, db_path, todo.size(), threads,
                  threads == 1 ? "" : "s", world.size() > 1 ? fmt::format(" + {} MPI ranks", world.size() - 1) : "");
     runner = std::make_unique<SweepRunner>(points, todo, sink);
+    if (time_limit > 0) runner->set_time_limit(time_limit);
   }
   try {
     SweepProgressCallback cb;
@@ -282,6 +289,11 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     if (!impl.quiet)
       fmt::print(stderr, "sweep: {} points stored now, {} were already there, {} failed; store {}\n", inserted, already,
                  failures.size(), db_path);
+    if (const std::size_t left = runner->not_started(); left > 0) {
+      fmt::print(stderr, "sweep: --time-limit: {} points not started (estimated {} of one core); repeat the command to run them\n",
+                 left, format_duration(runner->not_started_cost()));
+      if (code == kExitOk) code = kExitTimeLimit;
+    }
   }
   return world.broadcast(code);
 }

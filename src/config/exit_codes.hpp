@@ -8,6 +8,7 @@ enum ExitCode : int {
   kExitBadInput = 2,     // bad flag, value, config file or output path; nothing written
   kExitUnphysical = 3,   // the simulation turned unphysical; no result printed or stored
   kExitStoreFailed = 4,  // an output (results store, file, standard output) could not be written; the message says what was kept
+  kExitTimeLimit = 75,   // --time-limit left points for a repeat of the command (EX_TEMPFAIL: try again)
 };
 
 }  // namespace granchain

@@ -62,6 +62,26 @@ long long parse_integer_in(const std::string& text, const std::string& option, l
   return x;
 }
 
+double parse_duration(const std::string& text, const std::string& option) {
+  std::string number = text;
+  double unit = 1.0;
+  if (!number.empty()) {
+    const char last = number.back();
+    if (last == 's' || last == 'm' || last == 'h') {
+      unit = last == 'h' ? 3600.0 : last == 'm' ? 60.0 : 1.0;
+      number.pop_back();
+    }
+  }
+  double x = 0;
+  const auto [p, ec] = std::from_chars(number.data(), number.data() + number.size(), x);
+  const double seconds = x * unit;
+  if (number.empty() || ec != std::errc() || p != number.data() + number.size() || !(seconds > 0) || seconds > 366.0 * 86400.0)
+    throw InputError(fmt::format("{} = '{}' is not a duration; valid: a number > 0 of seconds, or with a unit s, m or h "
+                                 "(3600, 90m, 2.5h), at most a year",
+                                 option, text));
+  return seconds;
+}
+
 std::vector<std::string> parse_name_list(const std::string& text) {
   std::vector<std::string> names;
   for (std::string& item : split(text, ','))

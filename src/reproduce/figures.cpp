@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <limits>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -57,9 +59,20 @@ CollapseSpec free_space_spec(int N, double e, double k, int launches, const Repr
   return spec;
 }
 
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double ReproduceFlags::time_left() const {
+  return time_limit > 0 ? time_limit - (steady_seconds() - started_at) : std::numeric_limits<double>::infinity();
+}
+
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
   ResultsStore store(o.db);
   if (std::optional<CollapseResult> stored = store.find_collapse(spec)) return *stored;
+  if (!(o.time_left() > 0))
+    throw TimeLimitReached(fmt::format("the time limit is reached before the free-space count N = {}, e = {:g}, k = {:g}", spec.params.N,
+                                       spec.params.e, spec.params.k));
   if (o.stored_only)
     throw std::runtime_error(fmt::format("the free-space count N = {}, e = {:g}, k = {:g} ({} launches) is not in {} (--stored-only runs nothing)",
                                          spec.params.N, spec.params.e, spec.params.k, spec.realizations, o.db));
@@ -94,8 +107,12 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
   const bool tty = isatty(STDERR_FILENO) != 0;
   SweepProgressCallback cb;
   if (!o.quiet) cb = SweepProgressPrinter(tty, "reproduce " + label);
+  if (o.time_limit > 0) runner.set_time_limit(std::max(o.time_left(), 0.0));
   runner.run(o.threads, cb, tty ? 0.5 : 30.0);
   for (const auto& f : failures) fmt::print(stderr, "granchain: error: run turned unphysical, not stored: {}\n", f);
+  if (const std::size_t left = runner.not_started(); left > 0)
+    throw TimeLimitReached(fmt::format("{} of its points not started (estimated {} of one core)", left,
+                                       format_duration(runner.not_started_cost())));
   return failures;
 }
 

@@ -17,8 +17,17 @@ struct ReproduceFlags {
   bool quiet = false;
   bool print_sweeps = false;  // print the equivalent `granchain sweep` commands and run nothing
   bool stored_only = false;   // run nothing: analyse and draw the points already stored
+  // --time-limit: seconds from the command's start (deadline, steady clock) within which points
+  // must be predicted to end; 0: none.
+  double time_limit = 0, started_at = 0;
+  double time_left() const;  // seconds left of the time limit (infinity without one)
   bool paper() const { return preset == "paper"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
+};
+
+// A time limit left points of a figure unstarted: the command stops, to be repeated.
+struct TimeLimitReached : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // What one figure produced: its exit code (kExitOk, or kExitUnphysical when points failed and

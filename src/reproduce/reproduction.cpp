@@ -65,6 +65,10 @@ FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
     out.markdown = fmt::format("# {} ({}), preset {}\n\n", f.name, f.label, o.preset) + out.markdown;
     write_output(output_path(o, report_name(f.name)), out.markdown);
     return out;
+  } catch (const TimeLimitReached& e) {
+    fmt::print(stderr, "granchain: {}: --time-limit: {}; every finished run is stored, repeat the command to resume\n", f.name,
+               e.what());
+    return {kExitTimeLimit, "", ""};
   } catch (const StoreError& e) {
     fmt::print(stderr, "granchain: error: {}: {}; repeat the command to resume\n", f.name, e.what());
     return {kExitStoreFailed, "", ""};
@@ -117,6 +121,10 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     const auto start = std::chrono::steady_clock::now();
     const FigureOutcome out = run_one(*f, o);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (out.exit_code == kExitTimeLimit) {  // the later figures wait for the repeat too
+      fmt::print("runs:   {}\n", o.db);
+      return kExitTimeLimit;
+    }
     code = std::max(code, out.exit_code);
     if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
     if (!out.markdown.empty()) fmt::print("report: {}\n", output_path(o, report_name(f->name)));

@@ -23,10 +23,37 @@ SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std:
   start_ = wall_clock_seconds();
 }
 
+bool SweepRunner::fits_in_time_limit(double cost) const {
+  if (!std::isfinite(time_limit_)) return true;
+  const double ratio = done_wall_cost_ > 0 ? std::clamp(done_wall_ / done_wall_cost_, 0.25, 4.0) : 1.0;
+  return wall_clock_seconds() - start_ + 1.25 * ratio * cost <= time_limit_;
+}
+
 std::optional<std::size_t> SweepRunner::next() {
   std::lock_guard lock(mutex_);
-  if (stop_ || handed_out_ == todo_.size()) return std::nullopt;
-  return todo_[handed_out_++];
+  if (stop_) return std::nullopt;
+  if (handed_.size() != todo_.size()) handed_.assign(todo_.size(), 0);
+  for (std::size_t j = scan_from_; j < todo_.size(); ++j) {
+    if (handed_[j] || !fits_in_time_limit(points_[todo_[j]].cost)) continue;
+    handed_[j] = 1;
+    ++handed_out_;
+    while (scan_from_ < todo_.size() && handed_[scan_from_]) ++scan_from_;
+    return todo_[j];
+  }
+  return std::nullopt;
+}
+
+std::size_t SweepRunner::not_started() const {
+  std::lock_guard lock(mutex_);
+  return todo_.size() - handed_out_;
+}
+
+double SweepRunner::not_started_cost() const {
+  std::lock_guard lock(mutex_);
+  double cost = 0;
+  for (std::size_t j = 0; j < todo_.size(); ++j)
+    if (j >= handed_.size() || !handed_[j]) cost += points_[todo_[j]].cost;
+  return cost;
 }
 
 void SweepRunner::record(std::size_t index, const RunResult* result, const std::string& error,
@@ -36,7 +63,11 @@ void SweepRunner::record(std::size_t index, const RunResult* result, const std::
   ++done_;
   if (!result) ++failed_;
   done_cost_ += points_[index].cost;
-  if (result) finished_events_ += result->events;
+  if (result) {
+    finished_events_ += result->events;
+    done_wall_ += result->wall_seconds;
+    done_wall_cost_ += points_[index].cost;
+  }
   if (sink_error_) return;  // the store already failed: nothing more is written
   try {
     sink_(points_[index], result, error);

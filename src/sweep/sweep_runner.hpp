@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -56,6 +57,16 @@ class SweepRunner {
   // How often (wall seconds) a running point reports how far it has got; 0.5 unless set.
   void set_point_progress_every(double seconds) { point_progress_every_ = seconds; }
 
+  // A time limit (wall seconds from the start of run(); a batch job's walltime): a point is handed
+  // out only if it is predicted to finish within it, its cost-model estimate scaled by the ratio of
+  // wall time to estimate of the points finished so far (1 before any, held within 0.25 .. 4) and
+  // by a margin of 1.25. Points that do not fit are skipped, smaller ones after them may still run;
+  // the skipped ones are left for a later invocation (not_started()).
+  void set_time_limit(double seconds) { time_limit_ = seconds; }
+  // Points of todo never handed out (after run(): those the time limit left).
+  std::size_t not_started() const;
+  double not_started_cost() const;  // their estimated cost, seconds of one core
+
  private:
   void worker(int slot);
 
@@ -64,8 +75,14 @@ class SweepRunner {
   PointSink sink_;
   double total_cost_ = 0.0;
 
+  bool fits_in_time_limit(double cost) const;  // under mutex_
+
   mutable std::mutex mutex_;  // guards the fields below and calls of the sink
-  std::size_t handed_out_ = 0;
+  std::vector<char> handed_;   // per position of todo_: handed out
+  std::size_t handed_out_ = 0;  // how many
+  std::size_t scan_from_ = 0;   // every position before it is handed out
+  double time_limit_ = std::numeric_limits<double>::infinity();
+  double done_wall_ = 0.0, done_wall_cost_ = 0.0;  // wall seconds and estimates of finished points with a result
   std::size_t done_ = 0;
   std::size_t failed_ = 0;
   double done_cost_ = 0.0;
