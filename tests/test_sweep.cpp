@@ -191,11 +191,9 @@ TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   EXPECT_EQ(reports.back().eta, 0.0);
 }
 
-// A run records the CPU time of its thread beside its wall time (at most the wall time: one thread),
-// the JSON keeps it, and a run stored before it was recorded reads back as NaN.
 // With a time limit only the points predicted to end within it are handed out: two points whose
 // estimate is a million seconds are skipped, the small ones after them run, and the skipped ones
-// are counted for the repeat.
+// are counted for the repeat; points_longer_than names the ones no invocation can fit.
 TEST(SweepRunner, ATimeLimitSkipsPointsThatCannotEndWithinIt) {
   auto points = build_sweep_points(definition({{"N", "3"}, {"e", "0.5,0.6,0.7,0.8"}, {"k", "1e4"}, {"T", "20"}}));
   ASSERT_EQ(points.size(), 4u);
@@ -211,12 +209,16 @@ TEST(SweepRunner, ATimeLimitSkipsPointsThatCannotEndWithinIt) {
   EXPECT_EQ(ran, (std::vector<std::size_t>{1, 3}));
   EXPECT_EQ(runner.not_started(), 2u);
   EXPECT_DOUBLE_EQ(runner.not_started_cost(), 2e6);
+  EXPECT_EQ(points_longer_than(points, {0, 1, 2, 3}, 3600.0), (std::vector<std::size_t>{0, 2}));
+  EXPECT_TRUE(points_longer_than(points, {0, 1, 2, 3}, 0.0).empty());
   // Without a limit every point is handed out.
   SweepRunner all(points, {0, 1, 2, 3}, [](const SweepPoint&, const RunResult*, const std::string&) {});
   all.run(1);
   EXPECT_EQ(all.not_started(), 0u);
 }
 
+// A run records the CPU time of its thread beside its wall time (at most the wall time: one thread),
+// the JSON keeps it, and a run stored before it was recorded reads back as NaN.
 TEST(RunJson, CpuTimeIsRecordedAndReadBack) {
   const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e6"}, {"T", "50"}}));
   const RunResult r = run_driven_column(points.front().spec);

@@ -52,7 +52,8 @@ def run(*, N=None, e=None, k=None, T0=None, T=None, transient=None, seed=None, e
     floor_rate(_err), pp_rate(_err), particle_collisions, floor_hits, stationary (bool) and
     stationarity (the halves compared), per-particle numpy arrays i, z_mean, z_mean_err, z_std,
     z_std_err, K, K_err (i = 1 at the bottom), derived (D, tau_c, dt, sample_interval, samples),
-    cost, code_version, stored (None, or db and run_id with db=PATH), and json (the text of
+    cost (steps, events, wall_seconds, cpu_seconds), code_version, stored (None, or db and run_id
+    with db=PATH), and json (the text of
     ``granchain run --json``).
 
     db=PATH stores the run in that results store (created if missing), as the CLI does without

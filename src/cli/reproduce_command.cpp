@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <thread>
+#include <unordered_set>
 
 #include "cli/interrupt_message.hpp"
 #include "cli/subcommand.hpp"
@@ -15,6 +16,7 @@
 #include "reproduce/reproduction.hpp"
 #include "store/output_file.hpp"
 #include "store/results_store.hpp"
+#include "sweep/sweep_runner.hpp"
 
 namespace granchain {
 
@@ -35,7 +37,18 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
     if (o.stored_only && o.print_sweeps) throw InputError("--stored-only and --print-sweeps exclude each other: both run nothing, one draws, one prints");
     if (o.stored_only && !std::filesystem::exists(o.db))
       throw InputError(fmt::format("--db: '{}' does not exist; --stored-only draws from the runs of an existing store", o.db));
-    ResultsStore::preflight(o.db);
+    ResultsStore::preflight(o.db, o.stored_only ? ResultsStore::Access::ReadOnly : ResultsStore::Access::ReadWrite);
+    if (o.time_limit > 0 && !o.print_sweeps && !o.stored_only) {
+      // Runs that no invocation with this limit can fit are refused before anything runs.
+      std::unordered_set<std::string> stored;
+      if (std::filesystem::exists(o.db)) stored = ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys();
+      for (const FigureEntry* f : chosen) {
+        if (!f->grid) continue;
+        const std::vector<SweepPoint> points = grid_points(f->grid(o));
+        const std::vector<std::size_t> longer = points_longer_than(points, points_to_run(points, stored), o.time_limit);
+        if (!longer.empty()) throw InputError(fmt::format("{}: {}", f->name, time_limit_too_short_message(points, longer, o.time_limit)));
+      }
+    }
     if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
       std::error_code ec;
       if (std::filesystem::exists(o.out, ec) && !std::filesystem::is_directory(o.out, ec))
@@ -100,14 +113,17 @@ Subcommand add_reproduce_command(CLI::App& app) {
   auto time_limit_text = std::make_shared<std::string>();
   CLI::Option* time_limit_option =
       sub_->add_option("--time-limit", *time_limit_text,
-                       "a batch job's walltime: start only runs predicted to end within it (as sweep --time-limit); when runs "
-                       "are left, stop before drawing that figure and exit 75 (repeat the command to resume); seconds, or 90m, 2.5h")
+                       "a batch job's walltime: start only runs predicted to end within it (as sweep --time-limit; a free-space "
+                       "count starts while any time is left, the sketches and the sequences of intervals are not limited); when "
+                       "runs are left, stop before drawing that figure and exit 75 (repeat the command to resume); seconds, "
+                       "90m, 2.5h or H:MM:SS")
           ->type_name("DURATION");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
   sub_->add_flag("--stored-only", impl_->stored_only,
-                 "run nothing: analyse and draw each figure from the runs already in --db (a look at a long reproduction while "
-                 "it runs; the reports give the number of runs used). A figure with none of its runs stored, or a free-space "
-                 "count missing, fails");
+                 "run no sweep and no free-space count: analyse and draw each figure from the runs already in --db, opened "
+                 "read-only (a look at a long reproduction while it runs; each report says it is partial and how many runs it "
+                 "used). The sketches fig1, fig2 and the sequences of intervals are recomputed as always. A figure with none of "
+                 "its runs stored, or a free-space count missing, fails (exit 2)");
   sub_->add_flag("--print-sweeps", impl_->print_sweeps,
                  "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
                  "into one store; reproduce --db STORE then reuses every point) and run nothing");

@@ -110,7 +110,8 @@ Subcommand add_sweep_command(CLI::App& app) {
       ->type_name("i/n");
   sub_->add_option("--time-limit", impl.time_limit,
                    "a batch job's walltime: start only points predicted (cost model, scaled by the points finished) to end "
-                   "within it, leave the rest for a repeat of the command, and exit 75; seconds, or 90m, 2.5h")
+                   "within it, leave the rest for a repeat of the command, and exit 75; points whose estimate alone exceeds "
+                   "it are refused (exit 2); seconds, 90m, 2.5h or [D-]H:MM:SS")
       ->type_name("DURATION");
   sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost) and what the store already holds; run nothing");
   sub_->add_flag("--quiet,-q", impl.quiet, "print no table of results, no summary, and no progress unless --progress is given");
@@ -200,8 +201,17 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
           done = ResultsStore(db_path).point_keys();
         }
       } else {
-        store = std::make_unique<ResultsStore>(db_path);
-        done = store->point_keys();
+        // With a time limit, points that no invocation can fit in it are refused before the store
+        // is opened for writing (or created), so nothing is written.
+        if (time_limit > 0) {
+          if (access(db_path.c_str(), F_OK) == 0) done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
+          const std::vector<std::size_t> longer = points_longer_than(points, points_to_run(points, done), time_limit);
+          if (!longer.empty()) code = fail(time_limit_too_short_message(points, longer, time_limit), kExitBadInput);
+        }
+        if (code == kExitOk) {
+          store = std::make_unique<ResultsStore>(db_path);
+          done = store->point_keys();
+        }
       }
       todo = points_to_run(points, done);
       already = points.size() - todo.size();
@@ -209,6 +219,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       code = fail(e.what(), kExitStoreFailed);
     }
   }
+  if (code == kExitBadInput) return world.broadcast(code);
   if (world.broadcast(code) != kExitOk) return kExitStoreFailed;
 
   if (impl.dry_run) {

@@ -62,7 +62,40 @@ long long parse_integer_in(const std::string& text, const std::string& option, l
   return x;
 }
 
+namespace {
+// Slurm's [D-]H:MM:SS, or -1 when the text is not of that form.
+double clock_duration(const std::string& text) {
+  std::string rest = text;
+  long long days = 0;
+  if (const auto dash = rest.find('-'); dash != std::string::npos) {
+    const std::string d = rest.substr(0, dash);
+    const auto [p, ec] = std::from_chars(d.data(), d.data() + d.size(), days);
+    if (d.empty() || ec != std::errc() || p != d.data() + d.size() || days < 0) return -1;
+    rest = rest.substr(dash + 1);
+  }
+  const std::vector<std::string> parts = split(rest, ':');
+  if (parts.size() != 3) return -1;
+  long long v[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    const std::string& s = parts[static_cast<std::size_t>(i)];
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v[i]);
+    if (s.empty() || ec != std::errc() || p != s.data() + s.size() || v[i] < 0 || (i > 0 && v[i] > 59)) return -1;
+  }
+  return static_cast<double>(((days * 24 + v[0]) * 60 + v[1]) * 60 + v[2]);
+}
+}  // namespace
+
 double parse_duration(const std::string& text, const std::string& option) {
+  const auto refuse = [&] {
+    throw InputError(fmt::format("{} = '{}' is not a duration; valid: 1 s to a year, as seconds (3600), with a unit s, m or h "
+                                 "(90m, 2.5h) or as [D-]H:MM:SS (23:30:00)",
+                                 option, text));
+  };
+  if (text.find(':') != std::string::npos) {
+    const double seconds = clock_duration(text);
+    if (!(seconds >= 1.0) || seconds > 366.0 * 86400.0) refuse();
+    return seconds;
+  }
   std::string number = text;
   double unit = 1.0;
   if (!number.empty()) {
@@ -75,10 +108,8 @@ double parse_duration(const std::string& text, const std::string& option) {
   double x = 0;
   const auto [p, ec] = std::from_chars(number.data(), number.data() + number.size(), x);
   const double seconds = x * unit;
-  if (number.empty() || ec != std::errc() || p != number.data() + number.size() || !(seconds > 0) || seconds > 366.0 * 86400.0)
-    throw InputError(fmt::format("{} = '{}' is not a duration; valid: a number > 0 of seconds, or with a unit s, m or h "
-                                 "(3600, 90m, 2.5h), at most a year",
-                                 option, text));
+  if (number.empty() || ec != std::errc() || p != number.data() + number.size() || !(seconds >= 1.0) || seconds > 366.0 * 86400.0)
+    refuse();
   return seconds;
 }
 

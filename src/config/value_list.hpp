@@ -15,8 +15,9 @@ std::vector<double> parse_value_list(const std::string& text, const std::string&
 // "<option> = '<text>' is not valid; valid range: integer lo <= <name> <= hi".
 long long parse_integer_in(const std::string& text, const std::string& option, long long lo, long long hi);
 
-// A duration in seconds: "3600", "3600s", "90m", "2.5h" (a number > 0 with an optional unit s, m or
-// h), at most a year. Throws InputError "<option> = '<text>' is not a duration; valid: ...".
+// A duration in seconds, 1 s to a year: "3600", "3600s", "90m", "2.5h" (a number with an optional
+// unit s, m or h) or Slurm's "[D-]H:MM:SS" ("23:30:00", "1-00:00:00"). Throws InputError
+// "<option> = '<text>' is not a duration; valid: ...".
 double parse_duration(const std::string& text, const std::string& option);
 
 // Names separated by commas ("exact, reference"), blanks dropped, empty items skipped.

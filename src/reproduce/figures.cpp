@@ -68,14 +68,18 @@ double ReproduceFlags::time_left() const {
 }
 
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
+  if (o.stored_only) {
+    ResultsStore reader(o.db, ResultsStore::Access::ReadOnly);
+    if (std::optional<CollapseResult> stored = reader.find_collapse(spec)) return *stored;
+    throw NothingStored(fmt::format("the free-space count N = {}, e = {:g}, k = {:g} ({} launches) is not in {} (--stored-only runs nothing)",
+                                    spec.params.N, spec.params.e, spec.params.k, spec.realizations, o.db));
+  }
   ResultsStore store(o.db);
   if (std::optional<CollapseResult> stored = store.find_collapse(spec)) return *stored;
+  // A free-space count has no cost estimate: it starts while any time is left.
   if (!(o.time_left() > 0))
     throw TimeLimitReached(fmt::format("the time limit is reached before the free-space count N = {}, e = {:g}, k = {:g}", spec.params.N,
                                        spec.params.e, spec.params.k));
-  if (o.stored_only)
-    throw std::runtime_error(fmt::format("the free-space count N = {}, e = {:g}, k = {:g} ({} launches) is not in {} (--stored-only runs nothing)",
-                                         spec.params.N, spec.params.e, spec.params.k, spec.realizations, o.db));
   if (!o.quiet)
     fmt::print(stderr, "reproduce {}: N = {}, e = {:g}, k = {:g}, {} launches\n", label, spec.params.N, spec.params.e, spec.params.k,
                spec.realizations);
@@ -86,16 +90,18 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
 
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label) {
   std::vector<std::string> failures;
-  ResultsStore store(o.db);
-  const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
   if (o.stored_only) {
-    if (todo.size() == points.size())
-      throw std::runtime_error(fmt::format("none of its {} runs is in {} yet (--stored-only runs nothing)", points.size(), o.db));
+    const std::vector<std::size_t> missing = points_to_run(points, ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys());
+    if (missing.size() == points.size())
+      throw NothingStored(fmt::format("none of its {} runs is in {} yet (--stored-only runs nothing)", points.size(), o.db));
     if (!o.quiet)
       fmt::print(stderr, "reproduce {} ({}): {} runs, {} in {}; --stored-only: drawn from those, {} missing\n", label, o.preset,
-                 points.size(), points.size() - todo.size(), o.db, todo.size());
+                 points.size(), points.size() - missing.size(), o.db, missing.size());
+    if (!missing.empty()) o.partial->push_back(fmt::format("{}: {} of {} runs", label, points.size() - missing.size(), points.size()));
     return failures;
   }
+  ResultsStore store(o.db);
+  const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
   if (!o.quiet)
     fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", label, o.preset, points.size(),
                points.size() - todo.size(), o.db, todo.size(), o.threads);

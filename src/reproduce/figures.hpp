@@ -2,7 +2,9 @@
 // What the figures of `granchain reproduce` share: the flags, the driven-column grids a figure
 // needs (run into the results store, reusing what it holds), the analysis of exactly those points,
 // and the files a figure writes. One *_figures.cpp per group of figures implements them.
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,12 +23,19 @@ struct ReproduceFlags {
   // must be predicted to end; 0: none.
   double time_limit = 0, started_at = 0;
   double time_left() const;  // seconds left of the time limit (infinity without one)
+  // --stored-only: what each figure's grids lacked ("fig6 (N = 20..150): 112 of 672 runs"), for its
+  // report; shared, so figures (which get the flags as const) can add to it.
+  std::shared_ptr<std::vector<std::string>> partial = std::make_shared<std::vector<std::string>>();
   bool paper() const { return preset == "paper"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
 };
 
 // A time limit left points of a figure unstarted: the command stops, to be repeated.
 struct TimeLimitReached : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// --stored-only found nothing to draw a figure from (exit 2).
+struct NothingStored : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

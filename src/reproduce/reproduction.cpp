@@ -60,11 +60,20 @@ namespace {
 // Runs one figure; on failure prints one line and returns the exit code in the outcome.
 FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
   o.figure = f.name;
+  o.partial = std::make_shared<std::vector<std::string>>();
   try {
     FigureOutcome out = f.run(o);
+    std::string partial;
+    for (const std::string& p : *o.partial) partial += (partial.empty() ? "" : "; ") + p;
+    if (!partial.empty())
+      out.markdown = fmt::format("**Partial (--stored-only): drawn from the runs stored so far — {}. Not a result.**\n\n", partial) +
+                     out.markdown;
     out.markdown = fmt::format("# {} ({}), preset {}\n\n", f.name, f.label, o.preset) + out.markdown;
     write_output(output_path(o, report_name(f.name)), out.markdown);
     return out;
+  } catch (const NothingStored& e) {
+    fmt::print(stderr, "granchain: error: {}: {}\n", f.name, e.what());
+    return {kExitBadInput, "", ""};
   } catch (const TimeLimitReached& e) {
     fmt::print(stderr, "granchain: {}: --time-limit: {}; every finished run is stored, repeat the command to resume\n", f.name,
                e.what());
@@ -121,9 +130,9 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     const auto start = std::chrono::steady_clock::now();
     const FigureOutcome out = run_one(*f, o);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (out.exit_code == kExitTimeLimit) {  // the later figures wait for the repeat too
+    if (out.exit_code == kExitTimeLimit) {  // the later figures wait for the repeat too; an earlier failure's code wins
       fmt::print("runs:   {}\n", o.db);
-      return kExitTimeLimit;
+      return code != kExitOk ? code : kExitTimeLimit;
     }
     code = std::max(code, out.exit_code);
     if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);

@@ -206,7 +206,31 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
   if (!reason.empty()) throw StoreError(option + ": " + reason);
 }
 
-ResultsStore::ResultsStore(const std::string& path) : path_(path) {
+ResultsStore::ResultsStore(const std::string& path, Access access) : path_(path) {
+  if (access == Access::ReadWrite) {
+    open_read_write();
+    return;
+  }
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw StoreError(fmt::format("--db: cannot open '{}' for reading: {}", path, msg));
+  }
+  sqlite3_busy_timeout(db_, 60000);
+  if (schema_version() != kStoreSchemaVersion) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw StoreError(fmt::format("--db: '{}' has an older store schema; it is upgraded by the first command that writes it "
+                                 "(reading it read-only needs version {})",
+                                 path, kStoreSchemaVersion));
+  }
+}
+
+ResultsStore::ResultsStore(const std::string& path) : path_(path) { open_read_write(); }
+
+void ResultsStore::open_read_write() {
+  const std::string& path = path_;
   std::error_code ec;
   const bool created = !std::filesystem::exists(path, ec);
   // A store this constructor created and could not set up (a full disk) is removed again, so no

@@ -55,6 +55,9 @@ class ResultsStore {
   static void preflight(const std::string& path, Access access = Access::ReadWrite, const std::string& option = "--db");
 
   explicit ResultsStore(const std::string& path);  // opens or creates
+  // Access::ReadOnly: opens an existing store of the current schema for reading only (a version-1
+  // store is refused: the first command that writes it upgrades it); writing through it fails.
+  ResultsStore(const std::string& path, Access access);
   ~ResultsStore();
   ResultsStore(const ResultsStore&) = delete;
   ResultsStore& operator=(const ResultsStore&) = delete;
@@ -91,6 +94,7 @@ class ResultsStore {
   sqlite3* handle() { return db_; }
 
  private:
+  void open_read_write();  // opens or creates path_, creating or upgrading the schema
   void exec(const char* sql);
   int schema_version();
   void migrate_from_version_1();

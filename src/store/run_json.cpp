@@ -144,7 +144,9 @@ RunResult run_result_from_json(const json& j) {
   r.steps = c.at("steps").get<std::uint64_t>();
   r.events = c.at("events").get<std::uint64_t>();
   r.wall_seconds = c.at("wall_seconds").get<double>();
-  r.cpu_seconds = c.contains("cpu_seconds") ? c.at("cpu_seconds").get<double>() : std::numeric_limits<double>::quiet_NaN();
+  // Absent in runs stored before it was recorded; null where it was NaN.
+  r.cpu_seconds = c.contains("cpu_seconds") && c.at("cpu_seconds").is_number() ? c.at("cpu_seconds").get<double>()
+                                                                                 : std::numeric_limits<double>::quiet_NaN();
   return r;
 }
 

@@ -1,11 +1,15 @@
 #include "sweep/sweep_runner.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <limits>
 #include <thread>
+
+#include "sweep/sweep_progress.hpp"
 
 
 namespace granchain {
@@ -17,6 +21,23 @@ double wall_clock_seconds() {
 }
 }  // namespace
 
+std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit) {
+  std::vector<std::size_t> longer;
+  if (limit > 0)
+    for (std::size_t i : todo)
+      if (kTimeLimitMargin * points.at(i).cost > limit) longer.push_back(i);
+  return longer;
+}
+
+std::string time_limit_too_short_message(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& longer, double limit) {
+  double longest = 0;
+  for (std::size_t i : longer) longest = std::max(longest, points.at(i).cost);
+  return fmt::format("--time-limit = {} is shorter than the estimated run of {} point{} (the longest {} of one core, {} with the "
+                     "margin {}); valid: a limit of at least {}, or a grid without those points",
+                     format_duration(limit), longer.size(), longer.size() == 1 ? "" : "s", format_duration(longest),
+                     format_duration(kTimeLimitMargin * longest), kTimeLimitMargin, format_duration(kTimeLimitMargin * longest));
+}
+
 SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink)
     : points_(points), todo_(std::move(todo)), sink_(std::move(sink)) {
   for (std::size_t i : todo_) total_cost_ += points_.at(i).cost;
@@ -25,8 +46,8 @@ SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std:
 
 bool SweepRunner::fits_in_time_limit(double cost) const {
   if (!std::isfinite(time_limit_)) return true;
-  const double ratio = done_wall_cost_ > 0 ? std::clamp(done_wall_ / done_wall_cost_, 0.25, 4.0) : 1.0;
-  return wall_clock_seconds() - start_ + 1.25 * ratio * cost <= time_limit_;
+  const double ratio = done_wall_cost_ > 0 ? std::clamp(done_wall_ / done_wall_cost_, 0.25, 10.0) : 1.0;
+  return wall_clock_seconds() - start_ + kTimeLimitMargin * ratio * cost <= time_limit_;
 }
 
 std::optional<std::size_t> SweepRunner::next() {

@@ -36,6 +36,15 @@ struct SweepProgress {
 using PointSink = std::function<void(const SweepPoint& point, const RunResult* result, const std::string& error)>;
 using SweepProgressCallback = std::function<void(const SweepProgress&)>;
 
+// The margin a time limit leaves on a point's estimate (SweepRunner::set_time_limit).
+inline constexpr double kTimeLimitMargin = 1.25;
+// The points of todo that no invocation with this time limit can start: their estimate alone, with
+// the margin, exceeds it. Empty without a limit (limit <= 0).
+std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit);
+// The one-line refusal for them: "--time-limit = 60 s is shorter than the estimated run of 3 points
+// ...; valid: ...".
+std::string time_limit_too_short_message(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& longer, double limit);
+
 class SweepRunner {
  public:
   // todo: indices into points, in the order to hand them out.
@@ -59,9 +68,10 @@ class SweepRunner {
 
   // A time limit (wall seconds from the start of run(); a batch job's walltime): a point is handed
   // out only if it is predicted to finish within it, its cost-model estimate scaled by the ratio of
-  // wall time to estimate of the points finished so far (1 before any, held within 0.25 .. 4) and
-  // by a margin of 1.25. Points that do not fit are skipped, smaller ones after them may still run;
-  // the skipped ones are left for a later invocation (not_started()).
+  // wall time to estimate of the points finished so far (1 before any, held within 0.25 .. 10) and
+  // by the margin kTimeLimitMargin. Points that do not fit are skipped, smaller ones after them may
+  // still run; the skipped ones are left for a later invocation (not_started()). A worker that
+  // finds nothing that fits stops (time only runs out).
   void set_time_limit(double seconds) { time_limit_ = seconds; }
   // Points of todo never handed out (after run(): those the time limit left).
   std::size_t not_started() const;
