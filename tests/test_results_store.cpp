@@ -174,3 +174,30 @@ TEST(ResultsStore, VersionOneStoreIsUpgradedWhenOpenedForWriting) {
   EXPECT_EQ(query_double(src, "SELECT value FROM meta WHERE key = 'schema_version'"), 1.0);  // the source untouched
   sqlite3_close(src);
 }
+
+// Opened read-only, a store is read as it is and refuses writes; a version-1 store is refused (the
+// first command that writes it upgrades it) and left untouched.
+TEST(ResultsStore, ReadOnlyAccessReadsAndNeverWrites) {
+  TempDir dir;
+  const std::string path = (dir.path / "r.db").string();
+  {
+    ResultsStore store(path);
+    store.insert_run(small_run());
+  }
+  const auto bytes = fs::file_size(path);
+  {
+    ResultsStore reader(path, ResultsStore::Access::ReadOnly);
+    EXPECT_EQ(reader.count_runs(), 1);
+    EXPECT_THROW(reader.insert_run(small_run()), StoreError);
+  }
+  EXPECT_EQ(fs::file_size(path), bytes);
+  EXPECT_THROW(ResultsStore((dir.path / "missing.db").string(), ResultsStore::Access::ReadOnly), StoreError);
+  EXPECT_FALSE(fs::exists(dir.path / "missing.db"));
+  const std::string v1 = (dir.path / "v1.db").string();
+  fs::copy_file(fs::path(GRANCHAIN_SOURCE_DIR) / "tests/data/store_version_1.db", v1);
+  EXPECT_THROW(ResultsStore(v1, ResultsStore::Access::ReadOnly), StoreError);
+  sqlite3* src = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(v1.c_str(), &src, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  EXPECT_EQ(query_double(src, "SELECT value FROM meta WHERE key = 'schema_version'"), 1.0);
+  sqlite3_close(src);
+}
