@@ -42,9 +42,9 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
   s.points = grid_points(blocks);
   s.exit_code = run_missing_points(s.points, o, label).empty() ? kExitOk : kExitUnphysical;
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
-  s.grid_text = fmt::format("k = {} (fits over k >= {:g}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
+  s.grid_text = fmt::format("k = {} (fits over k >= {}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
                             "e = 1 - c/N for c = 5, 4, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2 and e = {}; {} runs",
-                            preset_k(o), preset_k_min(o), preset_T(o, 20), preset_T(o, 50), kPowerLawE, s.a.runs);
+                            preset_k(o), power_of_ten_text(preset_k_min(o)), preset_T(o, 20), preset_T(o, 50), kPowerLawE, s.a.runs);
   return s;
 }
 
@@ -217,8 +217,8 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
   const std::string drawn = draw_figure(o, "fig9", plot, "alpha_vs_n.py");
   FigureOutcome out{s.exit_code, "", drawn, s.a.run_seconds};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
-                             "n_coll = c k^α fitted over k >= {:g}. Figure: `fig9.png` (and .pdf).\n\n",
-                             o.preset, preset_k_min(o));
+                             "n_coll = c k^α fitted over k >= {}. Figure: `fig9.png` (and .pdf).\n\n",
+                             o.preset, power_of_ten_text(preset_k_min(o)));
   out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
   // The same line through the local exponents of each interval of k: how Eq. alphafit's slope
   // depends on where in k the exponent is read.

@@ -109,9 +109,9 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   out.drawn = fmt::format("{}_N{}_T01_exact.png (and .pdf)", prefix, fig5 ? "25" : "<N>");
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure {} --preset {}`. N = {}, k_B T0 = 1, exact engine, e = {}, k = {}, "
-      "T = {} (transient T/10), {} runs; fits over k >= {:g}. Figures: `{}_N<N>_T01_exact.png` (and .pdf): "
+      "T = {} (transient T/10), {} runs; fits over k >= {}. Figures: `{}_N<N>_T01_exact.png` (and .pdf): "
       "{}.\n\n",
-      o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, preset_k_min(o), o.figure,
+      o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, power_of_ten_text(preset_k_min(o)), o.figure,
       fig5 ? "panels (a)–(d) as the paper's Fig. cfreqlogN25" : "panel (a) is Fig. cflogk, panel (d) Fig. cfe, panel (b) the e_c(n) region");
   out.markdown += fig5 ? fig5_table(a) : small_n_table(a) + fine_structure_report(o.db, points);
   out.markdown += "Every (N, e): regime, slope b per decade of k, exponent α, curvature against log10 k, K_i inversion:\n\n```\n" +

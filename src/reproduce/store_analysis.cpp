@@ -207,7 +207,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
 
 std::string analysis_text(const StoreAnalysis& a) {
   std::string out;
-  out += fmt::format("{} runs; asymptotic range k >= {:g}\n", a.runs, a.k_min);
+  out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));
   for (const auto& f : a.report.families) {
     out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
     out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
