@@ -274,7 +274,7 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
     EXPECT_NE(all.find(std::string(fig)), std::string::npos) << fig;
   EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
   // The runs' stored wall times are summed per figure: none for the sketches, some for fig6.
-  EXPECT_NE(all.find("| its runs' time, summed |"), std::string::npos);
+  EXPECT_NE(all.find("| its runs' CPU time, summed |"), std::string::npos);
   auto row_of = [&all](const std::string& figure) {
     const std::size_t at = all.find("| " + figure + " |");
     return at == std::string::npos ? std::string() : all.substr(at, all.find('\n', at) - at);

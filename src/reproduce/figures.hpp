@@ -45,8 +45,8 @@ struct FigureOutcome {
   int exit_code = 0;
   std::string markdown;
   std::string drawn;  // the figure files, for the command's output ("out/fig6.png (and .pdf)")
-  // The stored wall times of the driven-column runs it analyses, summed (the CPU time they cost
-  // when they ran, in whichever sittings); negative for a figure without such runs.
+  // The stored CPU times of the driven-column runs it analyses (wall times for runs stored without
+  // one), summed over whichever sittings ran them; negative for a figure without such runs.
   double run_seconds = -1.0;
 };
 

@@ -124,7 +124,7 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
 int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
   int code = kExitOk;
   std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
-      "| figure | label | result | wall time | its runs' time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);
+      "| figure | label | result | wall time | its runs' CPU time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();
@@ -147,10 +147,10 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
     if (o.stored_only)
       all += "\n--stored-only: nothing was run; each figure is drawn from those of its runs that were stored (its section "
              "gives how many).\n";
-    all += "\nWall time: this command's, for the figure (runs already stored are only read). Its runs' time: the stored "
-           "wall times of the driven-column runs the figure analyses, summed over the sittings that ran them (CPU time "
-           "when no more points ran at once than there were cores); figures that share runs (fig6, fig7, fig9 and "
-           "Table 1's k_B T0 = 1; fig5 and fig8) count them in each.\n";
+    all += "\nWall time: this command's, for the figure (runs already stored are only read). Its runs' CPU time: the "
+           "stored CPU time of each driven-column run the figure analyses (the wall time for runs stored before CPU time "
+           "was recorded: stretched where the machine was loaded), summed over the sittings that ran them; figures that "
+           "share runs (fig6, fig7, fig9 and Table 1's k_B T0 = 1; fig5 and fig8) count them in each.\n";
     try {
       write_output(output_path(o, report_name(o.figure)), all + sections);
       fmt::print("report: {}\n", output_path(o, report_name(o.figure)));

@@ -129,7 +129,9 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   std::vector<analysis::NcollRun> runs;
   for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
     if (row.at("setup") != "driven_column" || row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
-    if (row.contains("wall_seconds") && row.at("wall_seconds").is_number()) a.run_seconds += row.at("wall_seconds").get<double>();
+    // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
+    if (row.contains("cpu_seconds") && row.at("cpu_seconds").is_number()) a.run_seconds += row.at("cpu_seconds").get<double>();
+    else if (row.contains("wall_seconds") && row.at("wall_seconds").is_number()) a.run_seconds += row.at("wall_seconds").get<double>();
     const bool stationary = !row.contains("stationary") || row.at("stationary").is_null() || row.at("stationary").get<int>() != 0;
     runs.push_back({row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>(),
                     row.at("e").get<double>(), row.at("k").get<double>(), row.at("n_coll").get<double>(),

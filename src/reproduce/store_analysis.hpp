@@ -27,7 +27,7 @@ using FamilyKey = std::tuple<std::string, int, double>;  // engine, N, kT0
 
 struct StoreAnalysis {
   std::size_t runs = 0;
-  double run_seconds = 0;  // the runs' stored wall times, summed
+  double run_seconds = 0;  // the runs' stored CPU times (wall times for runs stored without one), summed
   double k_min = 0;
   analysis::RegimeReport report;
   std::map<FamilyKey, std::map<double, Condensation>> condensation;  // by e
