@@ -6,8 +6,9 @@
 # which a loaded machine stretches.
 #
 #   bash bench/cost_model_check.sh STORE [--granchain build/granchain] [--preset paper] [--list FILE]
-#                                        [--seeds odd|even]
+#                                        [--seeds odd|even] [--cpu-only]
 # --seeds summarises only the runs with odd or even seeds (the model may be calibrated on the others).
+# --cpu-only summarises only the runs with a stored CPU time (their wall times may be stretched).
 # --list FILE writes one line per run: N e k T0 T transient predicted_s measured_s seed (the input
 # of bench/fit_cost_model.py --runs).
 set -euo pipefail
@@ -18,12 +19,14 @@ granchain=build/granchain
 preset=paper
 list=""
 parity=""
+cpu_only=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --granchain) granchain=$2; shift 2 ;;
     --preset) preset=$2; shift 2 ;;
     --list) list=$2; shift 2 ;;
     --seeds) parity=$2; shift 2 ;;
+    --cpu-only) cpu_only=1; shift ;;
     *) echo "cost_model_check.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -33,9 +36,10 @@ trap 'rm -rf "$work"' EXIT
 # seed -> predicted seconds, from the dry runs of the preset's sweeps.
 bash "$(dirname "$0")/preset_points.sh" "$granchain" "$preset" | awk '{ print $4, $2 }' | sort -u > "$work/predicted"
 # seed -> N e k T0 measured seconds, from the store.
-"$granchain" export --db "$store" | awk -F, '
+"$granchain" export --db "$store" | awk -F, -v cpu_only="$cpu_only" '
   NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-  $c["setup"] == "driven_column" { t = ("cpu_seconds" in c && $c["cpu_seconds"] != "") ? $c["cpu_seconds"] : $c["wall_seconds"]
+  $c["setup"] == "driven_column" && !(cpu_only && !("cpu_seconds" in c && $c["cpu_seconds"] != "")) {
+                                   t = ("cpu_seconds" in c && $c["cpu_seconds"] != "") ? $c["cpu_seconds"] : $c["wall_seconds"]
                                    print $c["seed"], $c["N"], $c["e"], $c["k"], $c["T0"], $c["T"], $c["transient"], t }' |
   sort > "$work/measured"
 join "$work/predicted" "$work/measured" | awk '{ print $3, $4, $5, $6, $7, $8, $2, $9, $1 }' > "$work/pairs"
