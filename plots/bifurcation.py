@@ -28,7 +28,7 @@ def main(argv):
         if f["e_c1"]:
             ax.errorbar(x, 1 - f["e_c1"]["value"], yerr=f["e_c1"]["error"], fmt="o", color="tab:blue", capsize=3, ms=4)
         if f.get("boundary"):
-            lo, hi = 1 - f["boundary"][1], 1 - f["boundary"][0]
+            lo, hi = 1 - f["boundary"]["high"], 1 - f["boundary"]["low"]
             ax.errorbar(x * 1.02, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="_", color="tab:cyan", capsize=4, ms=8)
         if f["e_c2"]:
             lo, hi = 1 - f["e_c2"]["high"], 1 - f["e_c2"]["low"]
@@ -72,7 +72,7 @@ def main(argv):
     tops = [3.0 * xx.max()]
     for f in fams:
         tops += [1 - f["e_c1"]["value"] + f["e_c1"]["error"]] if f["e_c1"] else []
-        tops += [1 - f["boundary"][0]] if f.get("boundary") else []
+        tops += [1 - f["boundary"]["low"]] if f.get("boundary") else []
         if f.get("e_c2_sign") and f["e_c2_sign"]["error"] < 0.05:
             tops.append(1 - f["e_c2_sign"]["value"] + f["e_c2_sign"]["error"])
         if f["e_c2"] and f["e_c2"]["high"] - f["e_c2"]["low"] < 0.05:

@@ -138,4 +138,16 @@ E_c1Estimate estimate_e_c1(const std::vector<Curve>& curves, int N, double k_min
   return out;
 }
 
+CriticalValue classification_boundary(const E_c1Estimate& x) {
+  CriticalValue c;
+  c.method = "classification boundary";
+  if (!x.has_boundary) return c;
+  c.low = x.last_collapsing_e;
+  c.high = x.first_uncollapsing_e;
+  c.value = 0.5 * (c.low + c.high);
+  c.error = (c.high - c.low) / std::sqrt(12.0);
+  c.found = true;
+  return c;
+}
+
 }  // namespace granchain::analysis

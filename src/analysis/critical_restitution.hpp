@@ -41,4 +41,9 @@ struct E_c1Estimate {
 
 E_c1Estimate estimate_e_c1(const std::vector<Curve>& curves, int N, double k_min, double z = 2.0);
 
+// The classification boundary as a bracket (low: the last collapsing e, high: the first
+// uncollapsing one), its midpoint the value and the standard deviation of a position uniform
+// within it the error; not found without a boundary.
+CriticalValue classification_boundary(const E_c1Estimate& x);
+
 }  // namespace granchain::analysis

@@ -15,19 +15,6 @@ bool table1_e(double e) {
   return false;
 }
 
-// The classification boundary (last collapsing e – first uncollapsing e) as a value with an error:
-// its midpoint, and the standard deviation of a position uniform within it.
-CriticalValue boundary_value(const E_c1Estimate& x) {
-  CriticalValue c;
-  c.low = x.last_collapsing_e;
-  c.high = x.first_uncollapsing_e;
-  c.value = 0.5 * (c.low + c.high);
-  c.error = (c.high - c.low) / std::sqrt(12.0);
-  c.found = true;
-  c.method = "classification boundary";
-  return c;
-}
-
 }  // namespace
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
@@ -140,8 +127,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     };
     fit_over_n([](const FamilyAnalysis& f) { return f.e_c1; }, false, a.has_A1, a.A1);
     fit_over_n([](const FamilyAnalysis& f) { return f.e_c2; }, true, a.has_A2, a.A2);
-    fit_over_n([](const FamilyAnalysis& f) { return f.e_c1_estimate.has_boundary ? boundary_value(f.e_c1_estimate) : CriticalValue{}; },
-               true, a.has_A1_boundary, a.A1_boundary);
+    fit_over_n([](const FamilyAnalysis& f) { return classification_boundary(f.e_c1_estimate); }, true, a.has_A1_boundary, a.A1_boundary);
     fit_over_n([](const FamilyAnalysis& f) { return f.e_c2_sign; }, false, a.has_A2_sign, a.A2_sign);
     std::vector<DataPoint> alpha_of_n;
     for (const FamilyAnalysis* f : fams)

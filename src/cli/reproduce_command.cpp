@@ -25,7 +25,7 @@ namespace {
 // threads_text: the --threads value as given, or null when the flag was not given.
 int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text, const std::string* time_limit_text) {
   ReproduceFlags o = *impl_;
-  o.started_at = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  o.started_at = std::chrono::steady_clock::now();
   const std::vector<const FigureEntry*> chosen = chosen_figures(o.figure);
   try {
     if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all, beyond", o.figure, figure_names()));

@@ -103,15 +103,12 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
       "|---|---|---|---|---|---|---|---|\n";
   for (const auto& f : s.a.report.families) {
     const std::vector<double> cond = condensed_es(s.a, f);
-    const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
+    const analysis::CriticalValue boundary = analysis::classification_boundary(f.e_c1_estimate);
     plot["families"].push_back({{"N", f.N}, {"e_c1", critical_json(f.e_c1)}, {"e_c2", critical_json(f.e_c2)},
-                                {"e_c2_sign", critical_json(f.e_c2_sign)}, {"condensed_e", cond},
-                                {"boundary", x1.has_boundary ? nlohmann::json{x1.last_collapsing_e, x1.first_uncollapsing_e} : nlohmann::json(nullptr)}});
+                                {"e_c2_sign", critical_json(f.e_c2_sign)}, {"condensed_e", cond}, {"boundary", critical_json(boundary)}});
     const std::string paper1 = f.N == 25 ? "0.894" : f.N == 50 ? "0.944" : fmt::format("{:.3f} (fit)", 1 - 2.6 / f.N);
     const std::string paper2 = f.N == 25 ? "0.878 – 0.884" : f.N == 50 ? "0.936 – 0.942" : fmt::format("{:.3f} (fit)", 1 - 3.0 / f.N);
-    const std::string boundary =
-        x1.has_boundary ? fmt::format("{:.4f} – {:.4f}", x1.last_collapsing_e, x1.first_uncollapsing_e) : "not found";
-    table += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), boundary, paper1,
+    table += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, critical_text(f.e_c1), bracket_text(boundary), paper1,
                          bracket_text(f.e_c2), critical_text(f.e_c2_sign), paper2,
                          cond.empty() ? "none" : fmt::format("{:g} – {:g} ({} of the grid)", cond.front(), cond.back(), cond.size()));
   }
@@ -261,17 +258,15 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o) {
   for (const PaperRow& row : paper)
     for (const auto& f : s.a.report.families) {
       if (f.N != row.N || f.kT0 != row.T0) continue;
-      const analysis::E_c1Estimate& x1 = f.e_c1_estimate;
-      const std::string boundary =
-          x1.has_boundary ? fmt::format("{:.4f} – {:.4f}", x1.last_collapsing_e, x1.first_uncollapsing_e) : "not found";
-      table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), boundary, row.ec1,
+      const analysis::CriticalValue boundary = analysis::classification_boundary(f.e_c1_estimate);
+      table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), bracket_text(boundary), row.ec1,
                            bracket_text(f.e_c2), critical_text(f.e_c2_sign), row.ec2,
                            f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-", row.alpha);
       if (f.has_alpha_bar)
         locals += fmt::format("- N = {}, k_B T0 = {:g}: {}\n", f.N, f.kT0, local_exponents_text(f.local_alpha_bar));
       auto num = [](bool has, double v) { return has ? fmt::format("{}", v) : std::string(); };
       csv += fmt::format("{},{:g},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", f.N, f.kT0, num(f.e_c1.found, f.e_c1.value),
-                         num(f.e_c1.found, f.e_c1.error), num(x1.has_boundary, x1.last_collapsing_e), num(x1.has_boundary, x1.first_uncollapsing_e),
+                         num(f.e_c1.found, f.e_c1.error), num(boundary.found, boundary.low), num(boundary.found, boundary.high),
                          num(f.e_c2.found, f.e_c2.low), num(f.e_c2.found, f.e_c2.high), num(f.e_c2_sign.found, f.e_c2_sign.value),
                          num(f.e_c2_sign.found, f.e_c2_sign.error), num(f.has_alpha_bar, f.alpha_bar.value),
                          num(f.has_alpha_bar, f.alpha_bar.error), row.ec1, row.ec2, row.alpha);

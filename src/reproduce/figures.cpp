@@ -59,12 +59,9 @@ CollapseSpec free_space_spec(int N, double e, double k, int launches, const Repr
   return spec;
 }
 
-double steady_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 double ReproduceFlags::time_left() const {
-  return time_limit > 0 ? time_limit - (steady_seconds() - started_at) : std::numeric_limits<double>::infinity();
+  if (!(time_limit > 0)) return std::numeric_limits<double>::infinity();
+  return time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - started_at).count();
 }
 
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {

@@ -2,6 +2,7 @@
 // What the figures of `granchain reproduce` share: the flags, the driven-column grids a figure
 // needs (run into the results store, reusing what it holds), the analysis of exactly those points,
 // and the files a figure writes. One *_figures.cpp per group of figures implements them.
+#include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -21,7 +22,8 @@ struct ReproduceFlags {
   bool stored_only = false;   // run nothing: analyse and draw the points already stored
   // --time-limit: seconds from the command's start (deadline, steady clock) within which points
   // must be predicted to end; 0: none.
-  double time_limit = 0, started_at = 0;
+  double time_limit = 0;
+  std::chrono::steady_clock::time_point started_at = std::chrono::steady_clock::now();
   double time_left() const;  // seconds left of the time limit (infinity without one)
   // --stored-only: what each figure's grids lacked ("fig6 (N = 20..150): 112 of 672 runs"), for its
   // report; shared, so figures (which get the flags as const) can add to it.

@@ -39,7 +39,7 @@ std::string time_limit_too_short_message(const std::vector<SweepPoint>& points, 
 }
 
 SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink)
-    : points_(points), todo_(std::move(todo)), sink_(std::move(sink)) {
+    : points_(points), todo_(std::move(todo)), sink_(std::move(sink)), handed_(todo_.size(), 0) {
   for (std::size_t i : todo_) total_cost_ += points_.at(i).cost;
   start_ = wall_clock_seconds();
 }
@@ -53,7 +53,6 @@ bool SweepRunner::fits_in_time_limit(double cost) const {
 std::optional<std::size_t> SweepRunner::next() {
   std::lock_guard lock(mutex_);
   if (stop_) return std::nullopt;
-  if (handed_.size() != todo_.size()) handed_.assign(todo_.size(), 0);
   for (std::size_t j = scan_from_; j < todo_.size(); ++j) {
     if (handed_[j] || !fits_in_time_limit(points_[todo_[j]].cost)) continue;
     handed_[j] = 1;
@@ -73,7 +72,7 @@ double SweepRunner::not_started_cost() const {
   std::lock_guard lock(mutex_);
   double cost = 0;
   for (std::size_t j = 0; j < todo_.size(); ++j)
-    if (j >= handed_.size() || !handed_[j]) cost += points_[todo_[j]].cost;
+    if (!handed_[j]) cost += points_[todo_[j]].cost;
   return cost;
 }
 
