@@ -378,6 +378,40 @@ TEST(CollapseRegimes, E_c2FromTheCurvatureSignChange) {
   EXPECT_FALSE(e_c2_from_curvature_sign(convex).found);
 }
 
+// On fig6's coarse grid e = 1 - c/N (N = 20) fewer than three curvatures lie near the sign change:
+// the zero is interpolated between the two around it. For curvatures -40 (e - e0) + 2000 (e - e0)^2
+// (bent as the measured ones: the straight line through the grid points misses e0 by an eighth of
+// a grid step) with noise 0.02 and e0 at c = 3.1, between the grid's 3.2 and 3.0, the
+// error (propagated, with the bracket's width / sqrt 12) covers e0 within 2 errors in at least 95 %
+// of 400 data sets; a sign change across a hole wider than max_gap is not located.
+TEST(CollapseRegimes, E_c2FromTheCurvatureSignChangeOnACoarseGrid) {
+  const int N = 20;
+  const double e0 = 1.0 - 3.1 / N;
+  Rng rng(44);
+  int covered = 0, found = 0;
+  const int sets = 400;
+  for (int s = 0; s < sets; ++s) {
+    std::vector<DataPoint> c;
+    for (double cc : {5.0, 4.0, 3.5, 3.2, 3.0, 2.8}) {
+      const double e = 1.0 - cc / N, d = e - e0;
+      c.push_back({e, -40.0 * d + 2000.0 * d * d + 0.02 * rng.normal(), 0.02});
+    }
+    const CriticalValue v = e_c2_from_curvature_sign(c, 0.0061, 2.0 / N);
+    if (!v.found) continue;
+    ++found;
+    EXPECT_NEAR(v.low, 1.0 - 3.2 / N, 1e-12);
+    EXPECT_NEAR(v.high, 1.0 - 3.0 / N, 1e-12);
+    EXPECT_GE(v.error, 0.2 / N / std::sqrt(12.0));
+    if (std::abs(v.value - e0) < 2.0 * v.error) ++covered;
+  }
+  EXPECT_EQ(found, sets);
+  EXPECT_GE(covered, 0.95 * sets);
+  // e = 0.4 convex, the next grid e 0.9667 concave: a hole of 0.57 in e, more than 2/N.
+  const std::vector<DataPoint> hole = {{0.4, 30.0, 5.0}, {0.9667, -3.3, 1.3}, {0.9733, -9.5, 2.9}};
+  EXPECT_FALSE(e_c2_from_curvature_sign(hole, 0.0061, 2.0 / 150).found);
+  EXPECT_TRUE(e_c2_from_curvature_sign(hole).found);  // without the limit: interpolated across it
+}
+
 // Across N, from stored-run-like input: at N = 25, 50, 100 on fig6's grid e = 1 - c/N, n_coll =
 // 10 + b x + g x^2 (x = log10 k) with b = 1.5 N^(5/2) ((1 - e) - 2.6/N)^2 above c = 2.6 (Eq. b_e_N)
 // and a curvature g = 0.02 N ((1 - e) - 3/N) that changes sign at c = 3; below c = 2.6 the count

@@ -146,7 +146,7 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
   return cv;
 }
 
-CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width) {
+CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width, double max_gap) {
   CriticalValue cv;
   cv.method = "zero of the curvature against log10 k: a weighted line through the curvatures around its sign change";
   std::vector<DataPoint> c;
@@ -155,32 +155,41 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
   std::sort(c.begin(), c.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
   for (std::size_t i = c.size(); i-- > 1;) {
     if (!(c[i].y <= 0 && c[i - 1].y > 0)) continue;
-    const double mid = 0.5 * (c[i - 1].x + c[i].x);
-    // The points within half_width of the bracket; on a grid too coarse for three of them, the
-    // three nearest to it.
-    std::vector<DataPoint> near;
+    const DataPoint& lo = c[i - 1];
+    const DataPoint& hi = c[i];
+    // Across a gap of the grid wider than max_gap the sign change is not located.
+    if (hi.x - lo.x > max_gap) return cv;
+    cv.low = lo.x;
+    cv.high = hi.x;
+    const double mid = 0.5 * (lo.x + hi.x);
+    std::vector<DataPoint> near;  // the points within half_width of the bracket
     for (const auto& p : c)
-      if (std::abs(p.x - mid) <= half_width + 0.5 * (c[i].x - c[i - 1].x)) near.push_back({p.x - mid, p.y, p.error});
-    if (near.size() < 3 && c.size() >= 3) {
-      near.clear();
-      for (const auto& p : c) near.push_back({p.x - mid, p.y, p.error});
-      std::sort(near.begin(), near.end(), [](const DataPoint& a, const DataPoint& b) { return std::abs(a.x) < std::abs(b.x); });
-      near.resize(3);
+      if (std::abs(p.x - mid) <= half_width + 0.5 * (hi.x - lo.x)) near.push_back({p.x - mid, p.y, p.error});
+    if (near.size() >= 3) {
+      const PolynomialFit f = fit_polynomial(near, 1);  // curvature = a + b (e - mid)
+      const double a = f.coef[0], b = f.coef[1];
+      const auto [first, last] = std::minmax_element(near.begin(), near.end(), [](const DataPoint& p, const DataPoint& q) { return p.x < q.x; });
+      const double r = b < 0 ? a / b : NAN;
+      // A zero outside the points the line was fitted to would be an extrapolation.
+      if (std::isfinite(r) && -r >= first->x && -r <= last->x) {
+        cv.value = mid - r;
+        // delta method for -a/b: var = (var a - 2 r cov(a, b) + r^2 var b) / b^2
+        const double var = (f.error[0] * f.error[0] - 2 * r * f.covariance01 + r * r * f.error[1] * f.error[1]) / (b * b);
+        cv.error = std::sqrt(std::max(var, 0.0));
+        cv.found = true;
+        return cv;
+      }
     }
-    if (near.size() < 3) return cv;
-    const PolynomialFit f = fit_polynomial(near, 1);  // curvature = a + b (e - mid)
-    const double a = f.coef[0], b = f.coef[1];
-    if (!(b < 0)) return cv;
-    const double r = a / b;
-    cv.low = c[i - 1].x;
-    cv.high = c[i].x;
-    // A zero outside the points the line was fitted to is an extrapolation: not claimed.
-    const auto [lo, hi] = std::minmax_element(near.begin(), near.end(), [](const DataPoint& p, const DataPoint& q) { return p.x < q.x; });
-    if (-r < lo->x || -r > hi->x) return cv;
-    cv.value = mid - r;
-    // delta method for -a/b: var = (var a - 2 r cov(a, b) + r^2 var b) / b^2
-    const double var = (f.error[0] * f.error[0] - 2 * r * f.covariance01 + r * r * f.error[1] * f.error[1]) / (b * b);
-    cv.error = std::sqrt(std::max(var, 0.0));
+    // Too few points for a line (fig6's coarse e = 1 - c/N), or a line whose zero lies outside
+    // them: the zero of the straight line through the two bracketing curvatures, with their errors
+    // propagated and the rounding of an unknown shape between two grid points, (high - low) /
+    // sqrt 12, added in quadrature.
+    const double dy = lo.y - hi.y, dx = hi.x - lo.x;
+    cv.value = lo.x + dx * lo.y / dy;
+    const double d_lo = -dx * hi.y / (dy * dy), d_hi = dx * lo.y / (dy * dy);
+    const double statistical = std::hypot(d_lo * lo.error, d_hi * hi.error);
+    cv.error = std::hypot(statistical, dx / std::sqrt(12.0));
+    cv.method = "zero of the curvature against log10 k: linear interpolation between the two curvatures around its sign change";
     cv.found = true;
     return cv;
   }

@@ -3,6 +3,7 @@
 // n_coll = c k^alpha, the convex/concave test against log k, the critical restitutions e_c1
 // (where b vanishes) and e_c2 (the convex/concave boundary), and the fits (1 - e_c) = A/N and
 // alpha = p log10 N + q (Eq. alphafit). Every result carries a standard error.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -85,12 +86,15 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
 // changes sign, convex below, concave above (pass the collapsing curves: x = e, y = curvature).
 // Scanning down from the largest e, the first e with a positive curvature and the e above it
 // bracket the change (low, high); a weighted straight line through the curvatures within
-// half_width of the bracket (on a grid too coarse for three of them, such as fig6's e = 1 - c/N,
-// the three nearest to it) gives the zero and, from its covariance, the error; a zero outside the
-// e range of those points (an extrapolation) is not claimed. Without a sign change, or with a line that does not fall with e: not found. Unlike
-// e_c2_from_regimes this asks for no significance, so it does not move down to where the
-// curvature becomes resolvable.
-CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width = 0.0061);
+// half_width of the bracket gives the zero and, from its covariance, the error. On a grid too
+// coarse for three such points (fig6's e = 1 - c/N), or where that line's zero falls outside them
+// (an extrapolation), the zero is interpolated linearly between the two bracketing curvatures,
+// its error their propagated errors and the bracket's width / sqrt 12 in quadrature.
+// A bracket wider than max_gap (a hole in the grid) locates nothing. Without a sign change, or
+// not found. Unlike e_c2_from_regimes this asks for no
+// significance, so it does not move down to where the curvature becomes resolvable.
+CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width = 0.0061,
+                                       double max_gap = INFINITY);
 
 // (1 - e_c) = A / N through the origin in 1/N, weighted by the errors of e_c (Eq. e-fit).
 struct InverseNFit {

@@ -74,7 +74,9 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       std::vector<DataPoint> curvatures;  // of the collapsing curves
       for (const auto& c : fam.curves)
         if (c.classified && c.c.regime != Regime::Uncollapsing) curvatures.push_back({c.e, c.c.curvature, c.c.curvature_error});
-      fam.e_c2_sign = e_c2_from_curvature_sign(curvatures);
+      // A sign change across more than 2/N of e (the width of the critical region, Eq. e-fit) is a
+      // hole in the grid, not a located e_c2.
+      fam.e_c2_sign = e_c2_from_curvature_sign(curvatures, 0.0061, 2.0 / fam.N);
     }
     {
       std::vector<Runs> point_groups;  // the runs of each (e, k), for the replica check
