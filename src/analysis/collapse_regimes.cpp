@@ -84,7 +84,9 @@ Classification classify(const std::vector<DataPoint>& all, double k_min, double 
   bool positive = true;
   for (const auto& p : pts) positive = positive && p.y > 0;
   if (positive) c.power_fit = fit_power_k(pts);
-  if (pts.size() >= 4) {
+  {
+    // Three values of k determine the quadratic exactly (the second difference, its error from
+    // theirs); the power-law call below still asks for four.
     const PolynomialFit q = fit_polynomial(transformed(pts, false), 2);
     c.curvature = q.coef[2];
     c.curvature_error = q.error[2];

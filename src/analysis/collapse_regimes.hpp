@@ -51,7 +51,8 @@ const char* regime_name(Regime r);  // "uncollapsing", "logarithmic", "power-law
 //   power-law:    b > 0 by z errors and n_coll is convex against log10 k (the curvature c of
 //                 a + b x + c x^2 is above zero by z errors): it grows faster than log k;
 //   logarithmic:  b > 0 by z errors and not convex.
-// Needs at least 3 points (4 for the curvature; with 3, convexity is never claimed).
+// Needs at least 3 points (with 3 the curvature is their second difference, and convexity is never
+// claimed: power-law asks for 4).
 struct Classification {
   Regime regime = Regime::Uncollapsing;
   LogFit log_fit;
