@@ -326,6 +326,22 @@ TEST_F(SweepCli, StoredOnlyDrawsFromWhatIsStoredAndRunsNothing) {
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
 }
 
+// --k-min re-reads the same runs over another window of k: the report names it and runs nothing
+// more; a window leaving fewer than three k of the preset's grid is refused (exit 2, nothing written).
+TEST_F(SweepCli, KMinReReadsTheStoredRunsOverAnotherWindow) {
+  ASSERT_EQ(run("reproduce --figure fig5 --preset smoke --db s.db --out figs -q").exit_code, 0);
+  EXPECT_NE(slurp(dir_ / "figs/report.md").find("fits over k >= 1e4"), std::string::npos);
+  const auto stored = query(dir_ / "s.db", "SELECT count(*) FROM runs");
+  const CliResult wider = run("reproduce --figure fig5 --preset smoke --db s.db --out wide --k-min 1e3 --stored-only");
+  ASSERT_EQ(wider.exit_code, 0) << wider.err;
+  EXPECT_NE(slurp(dir_ / "wide/report.md").find("fits over k >= 1e3"), std::string::npos);
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
+  const CliResult narrow = run("reproduce --figure fig5 --preset smoke --db s.db --out narrow --k-min 1e5");
+  EXPECT_EQ(narrow.exit_code, 2);
+  EXPECT_NE(narrow.err.find("--k-min = 100000 is out of range; valid range: 0 < k-min <= 1e4"), std::string::npos) << narrow.err;
+  EXPECT_FALSE(fs::exists(dir_ / "narrow"));
+}
+
 // --time-limit: points whose estimate alone exceeds the limit are refused before the store is
 // created (exit 2); points that fit one by one but not all together leave the rest for a repeat
 // (exit 75), which runs them; reproduce refuses likewise before running anything; a bad duration

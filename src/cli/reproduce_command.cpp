@@ -34,6 +34,15 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
     // As sweep validates it; an empty value is given, and refused.
     if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
     if (time_limit_text) o.time_limit = parse_duration(*time_limit_text, "--time-limit");
+    if (o.k_min != 0) {
+      // At least three values of k of the preset's grid (1eA .. 1eB by x10) must remain for the fits.
+      const double k_largest = std::stod(preset_k_max(o));
+      const double limit = k_largest / 100.0;
+      if (!(o.k_min > 0) || o.k_min > limit * (1 + 1e-9))
+        throw InputError(fmt::format("--k-min = {:g} is out of range; valid range: 0 < k-min <= {} (three values of k of the {} "
+                                     "preset's grid must remain for the fits)",
+                                     o.k_min, power_of_ten_text(limit), o.preset));
+    }
     if (o.stored_only && o.print_sweeps) throw InputError("--stored-only and --print-sweeps exclude each other: both run nothing, one draws, one prints");
     if (o.stored_only && !std::filesystem::exists(o.db))
       throw InputError(fmt::format("--db: '{}' does not exist; --stored-only draws from the runs of an existing store", o.db));
@@ -118,6 +127,10 @@ Subcommand add_reproduce_command(CLI::App& app) {
                        "runs are left, stop before drawing that figure and exit 75 (repeat the command to resume); seconds, "
                        "90m, 2.5h or H:MM:SS")
           ->type_name("DURATION");
+  sub_->add_option("--k-min", impl_->k_min,
+                   "lower end of k in every fit (the analysis only: the same runs, re-read over a window; default the "
+                   "preset's, 1e6 for paper, 1e5 for quick); at most the preset's largest k / 100")
+      ->type_name("K");
   sub_->add_flag("--quiet,-q", impl_->quiet, "no progress");
   sub_->add_flag("--stored-only", impl_->stored_only,
                  "run no sweep and no free-space count: analyse and draw each figure from the runs already in --db, opened "

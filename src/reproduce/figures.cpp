@@ -20,7 +20,10 @@
 namespace granchain {
 
 std::string preset_k(const ReproduceFlags& o) { return o.paper() ? "1e5:1e10:x10" : o.smoke() ? "1e4:1e6:x10" : "1e4:1e8:x10"; }
-double preset_k_min(const ReproduceFlags& o) { return o.paper() ? 1e6 : o.smoke() ? 1e4 : 1e5; }
+double preset_k_min(const ReproduceFlags& o) {
+  if (o.k_min > 0) return o.k_min;
+  return o.paper() ? 1e6 : o.smoke() ? 1e4 : 1e5;
+}
 std::string preset_k_max(const ReproduceFlags& o) { return o.paper() ? "1e10" : o.smoke() ? "1e6" : "1e8"; }
 std::string preset_T(const ReproduceFlags& o, int N) {
   if (o.paper()) return N < 50 ? "1e4" : "1e3";

@@ -23,6 +23,9 @@ struct ReproduceFlags {
   // --time-limit: seconds from the command's start (deadline, steady clock) within which points
   // must be predicted to end; 0: none.
   double time_limit = 0;
+  // --k-min: the lower end of k in every fit (the analysis only; the runs are the preset's); 0: the
+  // preset's own (1e6 for paper, 1e5 for quick, 1e4 for smoke).
+  double k_min = 0;
   std::chrono::steady_clock::time_point started_at = std::chrono::steady_clock::now();
   double time_left() const;  // seconds left of the time limit (infinity without one)
   // --stored-only: what each figure's grids lacked ("fig6 (N = 20..150): 112 of 672 runs"), for its
