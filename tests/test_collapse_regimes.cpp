@@ -412,6 +412,31 @@ TEST(CollapseRegimes, E_c2FromTheCurvatureSignChangeOnACoarseGrid) {
   EXPECT_TRUE(e_c2_from_curvature_sign(hole).found);  // without the limit: interpolated across it
 }
 
+// The interpolated zero and its error, exactly: between (0.84, 0.3 ± 0.1) and (0.85, -0.1 ± 0.01),
+// with no third point within reach, the zero is 0.84 + 0.01 · 0.3 / 0.4 = 0.8475; its statistical
+// error is hypot(0.00625 · 0.1, 0.01875 · 0.01) (d/dy_lo = -dx y_hi / dy², d/dy_hi = dx y_lo / dy²),
+// and the rounding 0.01 / sqrt 12 is added in quadrature.
+TEST(CollapseRegimes, E_c2InterpolatedZeroAndItsError) {
+  const std::vector<DataPoint> c = {{0.80, 1.0, 0.1}, {0.84, 0.3, 0.1}, {0.85, -0.1, 0.01}, {0.90, -0.5, 0.1}};
+  const CriticalValue v = e_c2_from_curvature_sign(c);
+  ASSERT_TRUE(v.found);
+  EXPECT_TRUE(v.interpolated);
+  EXPECT_NEAR(v.value, 0.8475, 1e-12);
+  EXPECT_NEAR(v.error, std::hypot(std::hypot(0.00625 * 0.1, 0.01875 * 0.01), 0.01 / std::sqrt(12.0)), 1e-12);
+}
+
+// With three values of k in the fit range the curvature is their second difference: n_coll = 10,
+// 12, 16 (± 0.1) at log10 k = 8, 9, 10 gives c = (16 - 24 + 10) / 2 = 1 ± sqrt(0.06) / 2, and the
+// curve, though convex by 8 errors, is called logarithmic: power-law asks for four k.
+TEST(CollapseRegimes, ThreeValuesOfKGiveTheSecondDifference) {
+  const std::vector<DataPoint> pts = {{1e7, 9.0, 0.1}, {1e8, 10.0, 0.1}, {1e9, 12.0, 0.1}, {1e10, 16.0, 0.1}};
+  const Classification c = classify(pts, 1e8);
+  EXPECT_NEAR(c.curvature, 1.0, 1e-9);
+  EXPECT_NEAR(c.curvature_error, std::sqrt(0.06) / 2.0, 1e-9);
+  EXPECT_EQ(c.regime, Regime::Logarithmic);
+  EXPECT_EQ(classify(pts, 1e7).regime, Regime::PowerLaw);  // four k: 9, 10, 12, 16 is convex
+}
+
 // Across N, from stored-run-like input: at N = 25, 50, 100 on fig6's grid e = 1 - c/N, n_coll =
 // 10 + b x + g x^2 (x = log10 k) with b = 1.5 N^(5/2) ((1 - e) - 2.6/N)^2 above c = 2.6 (Eq. b_e_N)
 // and a curvature g = 0.02 N ((1 - e) - 3/N) that changes sign at c = 3; below c = 2.6 the count

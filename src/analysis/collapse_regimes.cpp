@@ -182,8 +182,8 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
         return cv;
       }
     }
-    // Too few points for a line (fig6's coarse e = 1 - c/N), or a line whose zero lies outside
-    // them: the zero of the straight line through the two bracketing curvatures, with their errors
+    // Too few points for a line (fig6's coarse e = 1 - c/N), a line that does not fall with e, or
+    // one whose zero lies outside them: the zero of the straight line through the two bracketing curvatures, with their errors
     // propagated and the rounding of an unknown shape between two grid points, (high - low) /
     // sqrt 12, added in quadrature.
     const double dy = lo.y - hi.y, dx = hi.x - lo.x;
@@ -192,6 +192,7 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
     const double statistical = std::hypot(d_lo * lo.error, d_hi * hi.error);
     cv.error = std::hypot(statistical, dx / std::sqrt(12.0));
     cv.method = "zero of the curvature against log10 k: linear interpolation between the two curvatures around its sign change";
+    cv.interpolated = true;
     cv.found = true;
     return cv;
   }

@@ -69,6 +69,9 @@ struct CriticalValue {
   double low = 0, high = 0;  // bracket (equal to value when not bracketed)
   bool found = false;
   std::string method;
+  // Located by interpolating between two grid points: part of the error is the grid's rounding,
+  // (high - low) / sqrt 12, shared by every N of a grid e = 1 - c/N.
+  bool interpolated = false;
 };
 
 // e_c1 for one N from b(e) (x = e, y = b; uncollapsing e enter with b = 0): near e_c1 the paper
@@ -91,9 +94,10 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
 // coarse for three such points (fig6's e = 1 - c/N), or where that line's zero falls outside them
 // (an extrapolation), the zero is interpolated linearly between the two bracketing curvatures,
 // its error their propagated errors and the bracket's width / sqrt 12 in quadrature.
-// A bracket wider than max_gap (a hole in the grid) locates nothing. Without a sign change, or
-// not found. Unlike e_c2_from_regimes this asks for no
-// significance, so it does not move down to where the curvature becomes resolvable.
+// A bracket wider than max_gap (a hole in the grid) locates nothing, and without a sign change
+// nothing is found; a line through the points near it that does not fall with e also falls back to
+// the interpolation. Unlike e_c2_from_regimes this asks for no significance, so it does not move
+// down to where the curvature becomes resolvable.
 CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_of_e, double half_width = 0.0061,
                                        double max_gap = INFINITY);
 

@@ -108,7 +108,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     // rounding is shared, not independent, and averaging over N cannot shrink it. If each N's
     // position sits at the same fraction of its bracket, A moves by the fit's weighted mean of the
     // brackets' widths in c (weights x^2 / error^2, x = 1/N, as in the fit); A's error is at least
-    // that mean over sqrt 12.
+    // that mean over sqrt 12. An interpolated value (the sign change on a coarse grid) carries the
+    // same rounding; a value fitted between denser points does not, and enters that mean as 0.
     auto fit_over_n = [&fams](auto value_of, bool bracket, bool& has, InverseNFit& fit) {
       std::vector<double> Ns;
       std::vector<CriticalValue> values;
@@ -120,12 +121,12 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         values.push_back(c);
         const double x = 1.0 / f->N, sigma = std::max(c.error, 1e-12);
         w_sum += x * x / (sigma * sigma);
-        w_width += x * x / (sigma * sigma) * f->N * (c.high - c.low);
+        if (bracket || c.interpolated) w_width += x * x / (sigma * sigma) * f->N * (c.high - c.low);
       }
       has = Ns.size() >= 2;
       if (!has) return;
       fit = fit_inverse_n(Ns, values);
-      if (bracket) fit.A_error = std::max(fit.A_error, w_width / w_sum / std::sqrt(12.0));
+      fit.A_error = std::max(fit.A_error, w_width / w_sum / std::sqrt(12.0));
     };
     fit_over_n([](const FamilyAnalysis& f) { return f.e_c1; }, false, a.has_A1, a.A1);
     fit_over_n([](const FamilyAnalysis& f) { return f.e_c2; }, true, a.has_A2, a.A2);

@@ -163,7 +163,7 @@ std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o) {
 FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
   const std::vector<SweepPoint> points = grid_points(driven_limit_grid(o));
   const std::vector<std::string> failed = run_missing_points(points, o, "limit-driven");
-  const double k_fit = o.paper() ? 1e6 : o.smoke() ? 1e4 : 1e5;
+  const double k_fit = preset_k_min(o);
   const StoreAnalysis a = analyze_points(o.db, points, k_fit);
   const std::string T = driven_limit_grid(o)[0].T;
   nlohmann::json plot = {{"title", "driven column, N = 25"}, {"y_label", "n_coll"}, {"series", nlohmann::json::array()}};
