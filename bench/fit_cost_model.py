@@ -8,13 +8,13 @@ whose long run took under 0.05 s weigh 0.05: their timing is mostly the run's fi
 Each point's measured rate is the settled one, (long - short) / (LONG - SHORT), or the mean over the
 long run where that is larger (the difference of two short timings is noise for cheap points).
 
-    /usr/bin/python3 bench/fit_cost_model.py sample.txt [--short 10 --long 40 --settle 40]
-                                             [--runs runs.txt --seeds odd|even|all]
+    /usr/bin/python3 bench/fit_cost_model.py [sample.txt ...] [--short 10 --long 40 --settle 40]
+                                             [--runs runs.txt ...] [--seeds odd|even|all]
 
---runs adds whole runs from a results store (bench/cost_model_check.sh --list): their wall time
-over T + transient is the rate, free of the start-up effects that make the sample's millisecond
-timings unreliable; --seeds keeps only those with odd or even seeds, so that the others can check
-the model.
+--runs (repeatable) adds whole runs from a results store (bench/cost_model_check.sh --list): their
+time (CPU time where stored) over T + transient is the rate, free of the start-up effects that make
+the sample's millisecond timings unreliable; --seeds keeps only those with odd or even seeds, so
+that the others can check the model.
 
 prints the coefficients as a C++ initialiser and how many points the model predicts within a
 factor of 2.
@@ -35,11 +35,11 @@ def features(N, e, k, T0):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("lists", nargs="+")
+    ap.add_argument("lists", nargs="*")
     ap.add_argument("--short", type=float, default=10)
     ap.add_argument("--long", type=float, default=40)
     ap.add_argument("--settle", type=float, default=40)
-    ap.add_argument("--runs", default=None)
+    ap.add_argument("--runs", action="append", default=[])
     ap.add_argument("--seeds", default="all", choices=["odd", "even", "all"])
     a = ap.parse_args()
     rows, rates, weights = [], [], []
@@ -53,8 +53,8 @@ def main():
             rates.append(rate)
             # Runs of a few milliseconds are timed at start-up clock speeds: they weigh little.
             weights.append(1.0 if wl >= 0.05 else 0.05)
-    if a.runs:
-        for line in open(a.runs):
+    for runs in a.runs:
+        for line in open(runs):
             f = line.split()
             N, e, k, T0, T, tr, wall, seed = (float(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]),
                                               float(f[5]), float(f[7]), f[8])

@@ -10,14 +10,14 @@ namespace granchain {
 
 namespace {
 
-// `/usr/bin/python3 bench/fit_cost_model.py sample.txt --runs runs.txt --seeds odd` (2026-11-23, the
-// development machine's one core): sample.txt from `bash bench/paper_cost.sh --list sample.txt`
-// (396 points of the paper preset, all N and k), runs.txt from `bash bench/cost_model_check.sh
-// data/paper/paper.db --list runs.txt` (whole runs of the paper preset stored so far, those with odd
-// seeds; the even ones check the model). Order of exact_log_rate's features.
-constexpr double kExactCoefficients[13] = {-15.2647,  2.00404,    0.0539814, 0.0579728,  0.710096,
-                                           -0.131494, -0.0393103, 0.0806748, 0.0312736,  -0.0668121,
-                                           -0.0654709, 0.00563043, -0.431402};
+// `/usr/bin/python3 bench/fit_cost_model.py --runs paper.txt --runs small.txt --seeds odd`
+// (2026-11-24): whole runs with their stored CPU time (docs/benchmarks.md, "A cost model that knows
+// k"): paper.txt from `bash bench/cost_model_check.sh data/paper/paper.db --cpu-only --list paper.txt`
+// (the paper preset's N = 20 ... 150 at k_B T0 = 1, 2, 4, 10), small.txt likewise from a sweep of
+// N = 3 ... 6; the runs with odd seeds fit, the even ones check. Order of exact_log_rate's features.
+constexpr double kExactCoefficients[13] = {-14.3216,  1.29095,  0.111097,   -0.422302,  0.814731,
+                                           -0.178703, -0.135965, 0.10765,   0.0320669,  -0.0859047,
+                                           0.179825,  0.029,    -0.476674};
 constexpr double kCalibratedNMin = 3, kCalibratedNMax = 150, kDecadesAbove1e5 = 5;
 constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysis of a short run
 

@@ -10,10 +10,10 @@ namespace granchain {
 // Seconds for the whole run (transient + T), the run's fixed overhead included.
 //  - exact engine: ln(seconds per unit time) is a quadratic-to-cubic form in ln N, x =
 //    ln(1 + N (1 - e)) (the paper's scaling variable N (1 - e): the uncollapsing regime is
-//    x < ln(1 + A), A ~ 2.6) and log10 k, fitted by bench/fit_cost_model.py on 432 points of the
-//    paper's grids. Inside the calibrated box (3 <= N <= 150, 1e5 <= k <= 1e10) it predicts
-//    186 of the 187 points timed above 0.05 s within a factor of 2. Outside the box N and k are
-//    held at its edge and the cost scaled by N / N_edge: a rough guess.
+//    x < ln(1 + A), A ~ 2.6), log10 k and ln k_B T0, fitted by bench/fit_cost_model.py on the CPU
+//    time of 676 whole runs of the paper's grids. Inside the calibrated box (3 <= N <= 150,
+//    1e5 <= k <= 1e10) it predicts 693 of the 700 held-out runs within a factor of 2. Outside the
+//    box N and k are held at its edge and the cost scaled by N / N_edge: a rough guess.
 //  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
 //    (measured: 4.8e-9 .. 2.2e-8 s per particle step from N = 50 down to N = 3).
 //  - hard-sphere engine: not calibrated; about 3e-7 s per collision with a guessed collision
