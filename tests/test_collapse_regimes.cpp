@@ -420,7 +420,7 @@ TEST(CollapseRegimes, E_c2InterpolatedZeroAndItsError) {
   const std::vector<DataPoint> c = {{0.80, 1.0, 0.1}, {0.84, 0.3, 0.1}, {0.85, -0.1, 0.01}, {0.90, -0.5, 0.1}};
   const CriticalValue v = e_c2_from_curvature_sign(c);
   ASSERT_TRUE(v.found);
-  EXPECT_TRUE(v.interpolated);
+  EXPECT_TRUE(v.grid_rounded);
   EXPECT_NEAR(v.value, 0.8475, 1e-12);
   EXPECT_NEAR(v.error, std::hypot(std::hypot(0.00625 * 0.1, 0.01875 * 0.01), 0.01 / std::sqrt(12.0)), 1e-12);
 }

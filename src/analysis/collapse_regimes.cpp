@@ -84,13 +84,11 @@ Classification classify(const std::vector<DataPoint>& all, double k_min, double 
   bool positive = true;
   for (const auto& p : pts) positive = positive && p.y > 0;
   if (positive) c.power_fit = fit_power_k(pts);
-  {
-    // Three values of k determine the quadratic exactly (the second difference, its error from
-    // theirs); the power-law call below still asks for four.
-    const PolynomialFit q = fit_polynomial(transformed(pts, false), 2);
-    c.curvature = q.coef[2];
-    c.curvature_error = q.error[2];
-  }
+  // Three values of k determine the quadratic exactly (the second difference, its error from
+  // theirs); the power-law call below still asks for four.
+  const PolynomialFit q = fit_polynomial(transformed(pts, false), 2);
+  c.curvature = q.coef[2];
+  c.curvature_error = q.error[2];
   const DataPoint& p1 = pts[pts.size() - 2];
   const DataPoint& p2 = pts.back();
   const double decades = std::log10(p2.x / p1.x);
@@ -144,6 +142,7 @@ CriticalValue e_c2_from_regimes(const std::vector<double>& e, const std::vector<
   cv.high = sorted[last_power + 1].first;
   cv.value = 0.5 * (cv.low + cv.high);
   cv.error = 0.5 * (cv.high - cv.low);
+  cv.grid_rounded = true;
   cv.found = true;
   return cv;
 }
@@ -183,16 +182,16 @@ CriticalValue e_c2_from_curvature_sign(const std::vector<DataPoint>& curvature_o
       }
     }
     // Too few points for a line (fig6's coarse e = 1 - c/N), a line that does not fall with e, or
-    // one whose zero lies outside them: the zero of the straight line through the two bracketing curvatures, with their errors
-    // propagated and the rounding of an unknown shape between two grid points, (high - low) /
-    // sqrt 12, added in quadrature.
+    // one whose zero lies outside them: the zero of the straight line through the two bracketing
+    // curvatures, with their errors propagated and the rounding of an unknown shape between two
+    // grid points, (high - low) / sqrt 12, added in quadrature.
     const double dy = lo.y - hi.y, dx = hi.x - lo.x;
     cv.value = lo.x + dx * lo.y / dy;
     const double d_lo = -dx * hi.y / (dy * dy), d_hi = dx * lo.y / (dy * dy);
     const double statistical = std::hypot(d_lo * lo.error, d_hi * hi.error);
     cv.error = std::hypot(statistical, dx / std::sqrt(12.0));
     cv.method = "zero of the curvature against log10 k: linear interpolation between the two curvatures around its sign change";
-    cv.interpolated = true;
+    cv.grid_rounded = true;
     cv.found = true;
     return cv;
   }

@@ -69,9 +69,10 @@ struct CriticalValue {
   double low = 0, high = 0;  // bracket (equal to value when not bracketed)
   bool found = false;
   std::string method;
-  // Located by interpolating between two grid points: part of the error is the grid's rounding,
-  // (high - low) / sqrt 12, shared by every N of a grid e = 1 - c/N.
-  bool interpolated = false;
+  // Located only to the grid (a bracket between two grid points, or a zero interpolated between
+  // them): part of the error is the grid's rounding, (high - low) / sqrt 12, shared by every N of a
+  // grid e = 1 - c/N.
+  bool grid_rounded = false;
 };
 
 // e_c1 for one N from b(e) (x = e, y = b; uncollapsing e enter with b = 0): near e_c1 the paper

@@ -146,6 +146,7 @@ CriticalValue classification_boundary(const E_c1Estimate& x) {
   c.high = x.first_uncollapsing_e;
   c.value = 0.5 * (c.low + c.high);
   c.error = (c.high - c.low) / std::sqrt(12.0);
+  c.grid_rounded = true;
   c.found = true;
   return c;
 }

@@ -103,14 +103,13 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     AcrossN a;
     std::tie(a.engine, a.kT0) = key;
     // (1 - e_c) = A/N over the N where a critical value was found (at least two).
-    // A bracket between grid points (bracket = true) is located only to the grid: on fig6's grid
+    // A value located only to the grid (CriticalValue::grid_rounded): on fig6's grid
     // e = 1 - c/N every N's bracket is a step in c = N (1 - e), the same step at every N, so the
     // rounding is shared, not independent, and averaging over N cannot shrink it. If each N's
     // position sits at the same fraction of its bracket, A moves by the fit's weighted mean of the
     // brackets' widths in c (weights x^2 / error^2, x = 1/N, as in the fit); A's error is at least
-    // that mean over sqrt 12. An interpolated value (the sign change on a coarse grid) carries the
-    // same rounding; a value fitted between denser points does not, and enters that mean as 0.
-    auto fit_over_n = [&fams](auto value_of, bool bracket, bool& has, InverseNFit& fit) {
+    // that mean over sqrt 12. A value fitted between denser points enters that mean as 0.
+    auto fit_over_n = [&fams](auto value_of, bool& has, InverseNFit& fit) {
       std::vector<double> Ns;
       std::vector<CriticalValue> values;
       double w_sum = 0, w_width = 0;
@@ -121,17 +120,17 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         values.push_back(c);
         const double x = 1.0 / f->N, sigma = std::max(c.error, 1e-12);
         w_sum += x * x / (sigma * sigma);
-        if (bracket || c.interpolated) w_width += x * x / (sigma * sigma) * f->N * (c.high - c.low);
+        if (c.grid_rounded) w_width += x * x / (sigma * sigma) * f->N * (c.high - c.low);
       }
       has = Ns.size() >= 2;
       if (!has) return;
       fit = fit_inverse_n(Ns, values);
       fit.A_error = std::max(fit.A_error, w_width / w_sum / std::sqrt(12.0));
     };
-    fit_over_n([](const FamilyAnalysis& f) { return f.e_c1; }, false, a.has_A1, a.A1);
-    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2; }, true, a.has_A2, a.A2);
-    fit_over_n([](const FamilyAnalysis& f) { return classification_boundary(f.e_c1_estimate); }, true, a.has_A1_boundary, a.A1_boundary);
-    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2_sign; }, false, a.has_A2_sign, a.A2_sign);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c1; }, a.has_A1, a.A1);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2; }, a.has_A2, a.A2);
+    fit_over_n([](const FamilyAnalysis& f) { return classification_boundary(f.e_c1_estimate); }, a.has_A1_boundary, a.A1_boundary);
+    fit_over_n([](const FamilyAnalysis& f) { return f.e_c2_sign; }, a.has_A2_sign, a.A2_sign);
     std::vector<DataPoint> alpha_of_n;
     for (const FamilyAnalysis* f : fams)
       if (f->has_alpha_bar && f->alpha_bar.error > 0) alpha_of_n.push_back({static_cast<double>(f->N), f->alpha_bar.value, f->alpha_bar.error});
