@@ -2,12 +2,22 @@
 and saving a figure as PREFIX.png and PREFIX.pdf, each written whole or not at all."""
 import json
 import os
+import signal
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported)
+
+
+def _end_on_sigterm(signum, frame):
+    # SIGTERM (also sent when granchain, which started this script, ends) ends the script through
+    # SystemExit, so that save_file removes its unfinished temporary file.
+    raise SystemExit(128 + signum)
+
+
+signal.signal(signal.SIGTERM, _end_on_sigterm)
 
 
 def load(path):

@@ -4,6 +4,8 @@
 #include <pybind11/numpy.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "bindings.hpp"
@@ -163,21 +165,57 @@ py::dict run(const py::kwargs& kwargs) {
     }
   }
 
+  // The same rule as `granchain run`: a run whose identity (every parameter and the seed) is
+  // stored already is read back with a warning, never run or stored twice.
+  if (opts.use_db && std::filesystem::exists(opts.db_path)) {
+    std::optional<ResultsStore::StoredRun> stored;
+    {
+      py::gil_scoped_release nogil;
+      stored = ResultsStore(opts.db_path).find_run(opts.spec);
+    }
+    if (stored) {
+      nlohmann::json j = nlohmann::json::parse(stored->result_json);
+      const RunResult result = run_result_from_json(j);
+      j["stored"] = {{"db", opts.db_path}, {"run_id", stored->id}};
+      j["reused"] = true;
+      if (PyErr_WarnEx(PyExc_UserWarning,
+                   fmt::format("run {} of {} is this run already (the same parameters and seed = {}, so the same "
+                               "trajectory); it was read back, not run or stored again; for an independent replica "
+                               "pass another seed",
+                               stored->id, opts.db_path, opts.spec.seed)
+                       .c_str(),
+                   1) != 0)
+        throw py::error_already_set();  // warnings turned into errors
+      py::dict d = result_dict(result, j.dump(2), opts.db_path, stored->id);
+      d["reused"] = true;
+      return d;
+    }
+  }
+
   const ProgressCallback cb = progress_callback(progress);
   RunResult result;
   std::string json_text;
   std::int64_t run_id = 0;
+  bool reused = false;
   {
     py::gil_scoped_release nogil;
     result = run_driven_column(opts.spec, cb, 0.5);
     nlohmann::json j = run_result_to_json(result);
     if (opts.use_db) {
       ResultsStore store(opts.db_path);
-      run_id = store.insert_run(result, [&](std::int64_t id) { j["stored"] = {{"db", opts.db_path}, {"run_id", id}}; });
+      const ResultsStore::Stored s = store.insert_run(result, [&](std::int64_t id) { j["stored"] = {{"db", opts.db_path}, {"run_id", id}}; });
+      run_id = s.id;
+      reused = !s.inserted;
+      if (reused) {
+        j["stored"] = {{"db", opts.db_path}, {"run_id", s.id}};
+        j["reused"] = true;
+      }
     }
     json_text = j.dump(2);
   }
-  return result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
+  py::dict d = result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
+  d["reused"] = reused;
+  return d;
 }
 
 }  // namespace

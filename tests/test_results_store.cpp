@@ -44,7 +44,7 @@ TEST(ResultsStore, RoundTripOfRunAndProfiles) {
   EXPECT_FALSE(fs::exists(path));  // preflight writes nothing
   const RunResult r = small_run();
   ResultsStore store(path);
-  const auto id = store.insert_run(r);
+  const auto id = store.insert_run(r).id;
   EXPECT_EQ(store.count_runs(), 1);
   EXPECT_EQ(query_double(store.handle(), "SELECT n_coll FROM runs WHERE id=" + std::to_string(id)), r.n_coll.value);
   EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM profiles WHERE run_id=" + std::to_string(id)), 4.0);
@@ -86,7 +86,9 @@ TEST(ResultsStore, FailedWriteLeavesNoPartialRow) {
                          "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;",
                          nullptr, nullptr, nullptr),
             SQLITE_OK);
-  EXPECT_THROW(store.insert_run(r), StoreError);
+  RunResult other = r;
+  other.spec.seed = r.spec.seed + 1;  // another trajectory: the same one would not be written again
+  EXPECT_THROW(store.insert_run(other), StoreError);
   EXPECT_EQ(store.count_runs(), 1);
   EXPECT_EQ(query_double(store.handle(), "SELECT count(*) FROM profiles"), 4.0);
 }
@@ -188,7 +190,9 @@ TEST(ResultsStore, ReadOnlyAccessReadsAndNeverWrites) {
   {
     ResultsStore reader(path, ResultsStore::Access::ReadOnly);
     EXPECT_EQ(reader.count_runs(), 1);
-    EXPECT_THROW(reader.insert_run(small_run()), StoreError);
+    RunResult other = small_run();
+    other.spec.seed += 1;  // another trajectory (the stored one would not be written again)
+    EXPECT_THROW(reader.insert_run(other), StoreError);
   }
   EXPECT_EQ(fs::file_size(path), bytes);
   EXPECT_THROW(ResultsStore((dir.path / "missing.db").string(), ResultsStore::Access::ReadOnly), StoreError);

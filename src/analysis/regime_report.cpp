@@ -1,5 +1,7 @@
 #include "analysis/regime_report.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -23,12 +25,32 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   using Runs = std::vector<std::pair<double, double>>;
   std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
-  for (const NcollRun& r : runs) {
-    if (!std::isfinite(r.k) || !(r.n_coll_err > 0) || !std::isfinite(r.n_coll)) continue;
+  RegimeReport report;
+  // One trajectory, one sample: the run kept for each trajectory (the longest window, then the first).
+  std::map<std::string, std::size_t> kept;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const NcollRun& r = runs[i];
+    if (r.trajectory.empty()) continue;
+    const auto [it, fresh] = kept.emplace(r.trajectory, i);
+    if (!fresh && r.T > runs[it->second].T) it->second = i;
+  }
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const NcollRun& r = runs[i];
+    std::string why;
+    if (!std::isfinite(r.k)) why = "k is not finite (the hard-sphere engine): n_coll(k) needs a finite k";
+    else if (!std::isfinite(r.n_coll)) why = "n_coll is not a number";
+    else if (!(r.n_coll_err > 0))
+      why = fmt::format("n_coll = {:g} has no positive error (too few collisions in the window for blocking; run longer)", r.n_coll);
+    else if (!r.trajectory.empty() && kept.at(r.trajectory) != i)
+      why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",
+                        runs[kept.at(r.trajectory)].run_id, r.T == runs[kept.at(r.trajectory)].T ? "" : ", a shorter window");
+    if (!why.empty()) {
+      report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why});
+      continue;
+    }
     groups[{r.engine, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err});
     if (!r.stationary) unsettled[{r.engine, r.N, r.kT0}][r.e].push_back(r.k);
   }
-  RegimeReport report;
   report.k_min = k_min;
   for (const auto& [key, by_e] : groups) {
     FamilyAnalysis fam;

@@ -3,6 +3,7 @@
 // its regime, and per (engine, N, kT0) the critical restitutions and the power-law exponents; then
 // across N, the fits (1 - e_c) = A/N and alpha(N). What `granchain analyze` prints.
 #include <map>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,20 @@ struct NcollRun {
   double kT0 = 1, e = 0, k = 0;
   double n_coll = 0, n_coll_err = 0;
   bool stationary = true;  // the run's window passed its halves check (or the run predates it)
+  std::int64_t run_id = 0;  // the store's id, to name a run that is left out
+  // The trajectory: the physics, the engine and the seed ("" if unknown). Runs with one trajectory
+  // share their start (whatever their window or sampling), so they are one sample, not replicas.
+  std::string trajectory;
+  double T = 0;  // the measuring window: of one trajectory, the longest run is kept
+};
+
+// A run the analysis could not use, and why.
+struct ExcludedRun {
+  std::int64_t run_id = 0;
+  std::string engine;
+  int N = 0;
+  double kT0 = 1, e = 0, k = 0;
+  std::string reason;
 };
 
 struct CurveAnalysis {  // one (engine, N, kT0, e)
@@ -69,10 +84,13 @@ struct RegimeReport {
   double k_min = 0;
   std::vector<FamilyAnalysis> families;
   std::vector<AcrossN> across;
+  std::vector<ExcludedRun> excluded;  // every run left out, with its reason, in the input's order
 };
 
-// Groups the runs and analyses every group (see docs/analysis.md). Runs with a non-finite k
-// (hard spheres) or without an error are left out.
+// Groups the runs and analyses every group (see docs/analysis.md). Left out, and listed in
+// `excluded` with the reason: runs with a non-finite k (hard spheres) or n_coll, runs without a
+// positive error (no blocking estimate: too few collisions in the window), and every run of a
+// trajectory but one (the longest window; then the first given).
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min = 0.0);
 
 }  // namespace granchain::analysis

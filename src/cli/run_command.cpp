@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -109,6 +111,38 @@ class ProgressPrinter {
 
 namespace {
 
+// The outputs of a run read back from the store instead of run again (one line on standard error
+// says so): its JSON with "reused": true, and its summary.
+int report_stored_run(const RunFlags& impl, const RunOptions& opts, const ResultsStore::StoredRun& stored_run,
+                      bool json_stdout) {
+  fmt::print(stderr,
+             "granchain: run {} of {} is this run already (the same parameters and --seed {}, so the same trajectory); "
+             "it was not run or stored again; for an independent replica give another --seed\n",
+             stored_run.id, opts.db_path, opts.spec.seed);
+  nlohmann::json j;
+  RunResult result;
+  try {
+    j = nlohmann::json::parse(stored_run.result_json);
+    result = run_result_from_json(j);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: run {} of {} cannot be read back ({}); nothing was written\n", stored_run.id,
+               opts.db_path, e.what());
+    return kExitStoreFailed;
+  }
+  j["stored"] = {{"db", opts.db_path}, {"run_id", stored_run.id}};
+  j["reused"] = true;
+  const std::string where = fmt::format("run {} in {}, stored before and read back", stored_run.id, opts.db_path);
+  try {
+    if (impl.json_option->count() > 0 && !json_stdout) write_file_atomically(impl.json_path, j.dump(2) + "\n", "--json");
+    if (json_stdout) write_standard_output(j.dump(2) + "\n");
+    else if (!impl.quiet) write_standard_output(run_summary(result, where));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "granchain: error: {}; the run is stored ({})\n", e.what(), where);
+    return kExitStoreFailed;
+  }
+  return kExitOk;
+}
+
 int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   auto& impl = *impl_;
   RunOptions opts;
@@ -142,6 +176,19 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     return kExitBadInput;
   }
 
+  // A run whose identity (every parameter and the seed) is stored already is the same trajectory:
+  // it is read back, not run or stored again, so that no analysis can count it twice.
+  if (opts.use_db && std::filesystem::exists(opts.db_path)) {
+    std::optional<ResultsStore::StoredRun> stored_run;
+    try {
+      stored_run = ResultsStore(opts.db_path).find_run(opts.spec);
+    } catch (const StoreError& e) {
+      fmt::print(stderr, "granchain: error: {}; nothing was run or written\n", e.what());
+      return kExitStoreFailed;
+    }
+    if (stored_run) return report_stored_run(impl, opts, *stored_run, json_stdout);
+  }
+
   announce_on_interrupt("the run did not finish; nothing was stored or written");
   const bool tty = isatty(STDERR_FILENO) != 0;
   const bool show_progress = impl.progress_lines || (tty && !impl.quiet);
@@ -169,11 +216,16 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   try {
     if (opts.use_db) {
       ResultsStore store(opts.db_path);
-      const std::int64_t id = store.insert_run(result, [&](std::int64_t new_id) {
+      const ResultsStore::Stored id = store.insert_run(result, [&](std::int64_t new_id) {
         j["stored"] = {{"db", opts.db_path}, {"run_id", new_id}};
         if (json_to_file) json_file = std::make_unique<PendingFile>(impl.json_path, j.dump(2) + "\n", "--json");
       });
-      stored = fmt::format("run {} in {}", id, opts.db_path);
+      if (!id.inserted) {  // another process stored the same trajectory while this one ran
+        j["stored"] = {{"db", opts.db_path}, {"run_id", id.id}};
+        j["reused"] = true;
+        if (json_to_file) json_file = std::make_unique<PendingFile>(impl.json_path, j.dump(2) + "\n", "--json");
+      }
+      stored = fmt::format("run {} in {}{}", id.id, opts.db_path, id.inserted ? "" : " (stored meanwhile by another process; not stored twice)");
     } else if (json_to_file) {
       json_file = std::make_unique<PendingFile>(impl.json_path, j.dump(2) + "\n", "--json");
     }

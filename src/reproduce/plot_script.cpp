@@ -59,7 +59,7 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
     return fmt::format("drawing with plots/{}: cannot start it: {}", script, std::strerror(errno));
   }
   if (pid == 0) {  // the child: dies with its parent; standard output discarded, errors to the pipe
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // the script removes its unfinished file and ends (plot_common.py)
     if (::getppid() != parent) ::_exit(127);  // the parent died before prctl took effect
     const int devnull = ::open("/dev/null", O_WRONLY);
     if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);

@@ -4,9 +4,11 @@
 
 #include <array>
 #include <cmath>
+#include <set>
 #include <tuple>
 
 #include "reproduce/plot_script.hpp"
+#include "simulation/run_key.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 #include "theory/equilibrium_column.hpp"
@@ -18,13 +20,15 @@ namespace {
 // The partially condensed state of every (engine, N, T0, e) from the profiles of its runs at the
 // largest k stored (replicas combined per particle by weighted mean), against the elastic
 // column's sigma_0,i (theory/equilibrium_column) at the same N, k, T0.
-std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel) {
+std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel,
+                                                                          const std::set<std::int64_t>& left_out) {
   sel.table = ExportTable::Profiles;
   // (engine, N, T0, e) -> k -> particle -> sums for K and sigma: w, w K, w sigma (weights 1/err^2)
   std::map<FamilyKey, std::map<double, std::map<double, std::map<int, std::array<double, 4>>>>> acc;
   std::map<std::tuple<int, double, double>, ChainParameters> params;
   for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
-    if (row.at("setup") != "driven_column" || row.at("k").is_null() || row.at("K_err").is_null() || row.at("z_std_err").is_null())
+    if (row.at("setup") != "driven_column" || row.at("k").is_null() || row.at("K_err").is_null() || row.at("z_std_err").is_null() ||
+        left_out.count(row.at("run_id").get<std::int64_t>()))
       continue;
     const double kerr = row.at("K_err").get<double>(), serr = row.at("z_std_err").get<double>();
     if (!(kerr > 0) || !(serr > 0)) continue;
@@ -64,6 +68,25 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0), K, sigma, sigma0};
     }
   return out;
+}
+
+double number_or_nan(const nlohmann::json& x) { return x.is_number() ? x.get<double>() : std::nan(""); }
+
+// The trajectory a stored run followed (simulation/run_key.hpp), from its columns.
+std::string trajectory_of_row(const nlohmann::json& row) {
+  RunSpec s;
+  s.engine.name = row.at("engine").get<std::string>();
+  s.params.N = row.at("N").get<int>();
+  s.params.e = row.at("e").get<double>();
+  s.params.k = number_or_nan(row.at("k"));
+  s.params.kT0 = row.at("T0").get<double>();
+  s.params.m = row.at("m").get<double>();
+  s.params.d = row.at("d").get<double>();
+  s.params.g = row.at("g").get<double>();
+  s.engine.dt_factor = number_or_nan(row.at("dt_factor"));
+  s.engine.hard.tc = row.contains("tc") ? number_or_nan(row.at("tc")) : std::nan("");
+  s.seed = static_cast<std::uint64_t>(row.at("seed").get<std::int64_t>());
+  return trajectory_key(s);
 }
 
 }  // namespace
@@ -128,18 +151,30 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
   for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
-    if (row.at("setup") != "driven_column" || row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
+    if (row.at("setup") != "driven_column") continue;
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     if (row.contains("cpu_seconds") && row.at("cpu_seconds").is_number()) a.run_seconds += row.at("cpu_seconds").get<double>();
     else if (row.contains("wall_seconds") && row.at("wall_seconds").is_number()) a.run_seconds += row.at("wall_seconds").get<double>();
     const bool stationary = !row.contains("stationary") || row.at("stationary").is_null() || row.at("stationary").get<int>() != 0;
-    runs.push_back({row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>(),
-                    row.at("e").get<double>(), row.at("k").get<double>(), row.at("n_coll").get<double>(),
-                    row.at("n_coll_err").get<double>(), stationary});
+    analysis::NcollRun run;
+    run.engine = row.at("engine").get<std::string>();
+    run.N = row.at("N").get<int>();
+    run.kT0 = row.at("T0").get<double>();
+    run.e = row.at("e").get<double>();
+    run.k = number_or_nan(row.at("k"));
+    run.n_coll = number_or_nan(row.at("n_coll"));
+    run.n_coll_err = number_or_nan(row.at("n_coll_err"));
+    run.stationary = stationary;
+    run.run_id = row.at("id").get<std::int64_t>();
+    run.trajectory = trajectory_of_row(row);
+    run.T = row.at("T").get<double>();
+    runs.push_back(run);
   }
   a.runs = runs.size();
   a.report = analysis::analyze_runs(runs, k_min);
-  a.condensation = condensation_by_family(db, sel);
+  std::set<std::int64_t> left_out;
+  for (const auto& x : a.report.excluded) left_out.insert(x.run_id);
+  a.condensation = condensation_by_family(db, sel, left_out);
   nlohmann::json& j = a.json;
   j = {{"k_min", k_min}, {"runs", a.runs}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
   for (const auto& f : a.report.families) {
@@ -192,6 +227,10 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
   }
+  j["excluded"] = nlohmann::json::array();
+  for (const auto& x : a.report.excluded)
+    j["excluded"].push_back({{"run_id", x.run_id}, {"engine", x.engine}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
+                             {"k", std::isfinite(x.k) ? nlohmann::json(x.k) : nlohmann::json(nullptr)}, {"reason", x.reason}});
   for (const auto& a : a.report.across) {
     auto inv = [](bool has, const analysis::InverseNFit& f) {
       return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
@@ -207,9 +246,25 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   return a;
 }
 
+std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
+  if (excluded.empty()) return "";
+  // Runs left out for one reason at one (engine, N, T0, e, k), named together.
+  std::map<std::tuple<std::string, std::string, int, double, double, double>, std::vector<std::int64_t>> groups;
+  for (const auto& x : excluded) groups[{x.reason, x.engine, x.N, x.kT0, x.e, x.k}].push_back(x.run_id);
+  std::string out = fmt::format("left out of the analysis: {} run{}\n", excluded.size(), excluded.size() == 1 ? "" : "s");
+  for (const auto& [g, ids] : groups) {
+    std::string list;
+    for (std::int64_t id : ids) list += fmt::format("{}{}", list.empty() ? "" : ", ", id);
+    out += fmt::format("  engine {}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", std::get<1>(g), std::get<2>(g),
+                       std::get<3>(g), std::get<4>(g), std::get<5>(g), ids.size() == 1 ? "" : "s", list, std::get<0>(g));
+  }
+  return out;
+}
+
 std::string analysis_text(const StoreAnalysis& a) {
   std::string out;
   out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));
+  out += excluded_text(a.report.excluded);
   for (const auto& f : a.report.families) {
     out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
     out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",

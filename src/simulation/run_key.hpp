@@ -14,6 +14,10 @@ std::string exact_decimal(double x);
 // "driven_column engine=exact N=25 e=0.88 k=100000000 T0=1 ... seed=7". Engine options enter
 // only where they act: dt_factor for the time-stepped engines, tc for the hard engine.
 std::string point_key(const RunSpec& spec);
+// The trajectory a run follows: the physics, the engine (with the options that act) and the seed,
+// without the window (T, transient) and the sampling. Runs with one trajectory key share their
+// start, so they are one sample of the dynamics, never independent replicas.
+std::string trajectory_key(const RunSpec& spec);
 // The same without the seed: what a sweep point's seed is derived from.
 std::string point_key_without_seed(const RunSpec& spec);
 

@@ -3,7 +3,9 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 #include <ctime>
 #include <filesystem>
 #include <limits>
@@ -125,6 +127,37 @@ std::string schema_sql() {
   return sql;
 }
 
+// What a store of this schema version lacks ("the table 'profiles'", "the column 'n_coll' of the
+// table 'runs'"), "" if nothing. The expected tables and columns are read from the schema itself,
+// set up in memory; a version-1 store lacks tc and bins of runs by design.
+std::string missing_schema_part(sqlite3* db, int version) {
+  sqlite3* ref = nullptr;
+  sqlite3_open(":memory:", &ref);
+  sqlite3_exec(ref, schema_sql().c_str(), nullptr, nullptr, nullptr);
+  std::string missing;
+  SqlStatement tables(ref, "SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name");
+  while (missing.empty() && tables.row()) {
+    const std::string table = tables.column_text(0);
+    std::vector<std::string> have;
+    {
+      SqlStatement cols(db, ("SELECT name FROM pragma_table_info('" + table + "')").c_str());
+      while (cols.row()) have.push_back(cols.column_text(0));
+    }
+    if (have.empty()) {
+      missing = fmt::format("the table '{}'", table);
+      break;
+    }
+    SqlStatement want(ref, ("SELECT name FROM pragma_table_info('" + table + "')").c_str());
+    while (missing.empty() && want.row()) {
+      const std::string c = want.column_text(0);
+      if (version == 1 && table == "runs" && (c == "tc" || c == "bins")) continue;
+      if (std::find(have.begin(), have.end(), c) == have.end()) missing = fmt::format("the column '{}' of the table '{}'", c, table);
+    }
+  }
+  sqlite3_close(ref);
+  return missing;
+}
+
 }  // namespace
 
 std::string ResultsStore::utc_now() {
@@ -147,14 +180,40 @@ std::string cannot_create_file_reason(const std::string& path) {
   return "";
 }
 
+void ResultsStore::recover_interrupted_write(const std::string& path, const std::string& option) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string journal = path + "-journal", wal = path + "-wal";
+  const bool leftover = fs::file_size(journal, ec) > 0 || (ec.clear(), fs::file_size(wal, ec) > 0);
+  if (!leftover) return;
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  // SQLite rolls a hot journal back (or checkpoints a WAL) on the first read through a connection
+  // that may write; a journal that a live writer holds is not hot and is left alone.
+  if (::access(path.c_str(), R_OK | W_OK) != 0 || ::access(dir.c_str(), W_OK) != 0)
+    throw StoreError(fmt::format("{}: '{}' has the journal of an interrupted write beside it; SQLite must roll it back "
+                                 "before the store can be read, which needs write access to the store and its folder",
+                                 option, path));
+  sqlite3* db = nullptr;
+  int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr);
+  if (rc == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 60000);
+    rc = sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+  }
+  sqlite3_close(db);
+  (void)rc;  // a file that is no database at all is named by the caller's checks
+}
+
 void ResultsStore::preflight(const std::string& path, Access access, const std::string& option) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const bool read_only = access == Access::ReadOnly;
+  if (path.empty()) throw StoreError(fmt::format("{}: the file name is empty; name a results store", option));
   if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
     if (!fs::is_regular_file(path, ec)) throw StoreError(fmt::format("{}: '{}' is not a regular file", option, path));
     if (::access(path.c_str(), read_only ? R_OK : R_OK | W_OK) != 0)
       throw StoreError(fmt::format("{}: '{}' is not {}", option, path, read_only ? "readable" : "readable and writable"));
+    recover_interrupted_write(path, option);
     sqlite3* db = nullptr;
     const int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
     std::string problem;
@@ -192,6 +251,20 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
             problem = fmt::format("has store schema version {}, this build reads 1 to {}", v, kStoreSchemaVersion);
         }
         sqlite3_finalize(st);
+        if (problem.empty()) {
+          try {
+            int version = 0;
+            {
+              SqlStatement v(db, "SELECT value FROM meta WHERE key = 'schema_version'");
+              version = v.row() ? static_cast<int>(v.column_int(0)) : 0;
+            }
+            const std::string missing = version > 0 ? missing_schema_part(db, version) : "";
+            if (!missing.empty())
+              problem = fmt::format("is damaged or was not written by granchain: it lacks {} (store schema version {})", missing, version);
+          } catch (const StoreError& e) {
+            problem = fmt::format("cannot be read ({})", e.what());
+          }
+        }
       }
     }
     sqlite3_close(db);
@@ -211,6 +284,7 @@ ResultsStore::ResultsStore(const std::string& path, Access access) : path_(path)
     open_read_write();
     return;
   }
+  recover_interrupted_write(path, "--db");
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -314,16 +388,30 @@ std::int64_t ResultsStore::in_transaction(const std::function<std::int64_t()>& w
   }
 }
 
-std::int64_t ResultsStore::insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit) {
-  return in_transaction([&] {
+ResultsStore::Stored ResultsStore::insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit) {
+  Stored out;
+  out.id = in_transaction([&]() -> std::int64_t {
+    // The same identity (every parameter and the seed) is the same trajectory: kept once.
+    SqlStatement find(db_, "SELECT run_id FROM run_points WHERE point_key = ?");
+    find.bind(1, point_key(r.spec));
+    if (find.row()) return find.column_int(0);
     const std::int64_t id = append_run(r);
-    SqlStatement key(db_, "INSERT OR IGNORE INTO run_points(point_key, run_id) VALUES(?,?)");
+    SqlStatement key(db_, "INSERT INTO run_points(point_key, run_id) VALUES(?,?)");
     key.bind(1, point_key(r.spec));
     key.bind(2, id);
     key.run();
     if (before_commit) before_commit(id);
+    out.inserted = true;
     return id;
   });
+  return out;
+}
+
+std::optional<ResultsStore::StoredRun> ResultsStore::find_run(const RunSpec& spec) {
+  SqlStatement find(db_, "SELECT r.id, r.result_json FROM run_points p JOIN runs r ON r.id = p.run_id WHERE p.point_key = ?");
+  find.bind(1, point_key(spec));
+  if (!find.row()) return std::nullopt;
+  return StoredRun{find.column_int(0), find.column_text(1)};
 }
 
 ResultsStore::Stored ResultsStore::insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed,

@@ -53,6 +53,11 @@ class ResultsStore {
   // Messages start with `option` (the flag that named the store).
   enum class Access { ReadWrite, ReadOnly };
   static void preflight(const std::string& path, Access access = Access::ReadWrite, const std::string& option = "--db");
+  // A process killed while it wrote (kill -9, a power cut) leaves a hot rollback journal beside
+  // the store; the store's committed state is intact, but a read-only connection cannot roll the
+  // journal back and SQLite refuses to read. This rolls it back through a connection that may
+  // write (nothing else is changed); throws StoreError when the store or its folder is not writable.
+  static void recover_interrupted_write(const std::string& path, const std::string& option = "--db");
 
   explicit ResultsStore(const std::string& path);  // opens or creates
   // Access::ReadOnly: opens an existing store of the current schema for reading only (a version-1
@@ -62,17 +67,25 @@ class ResultsStore {
   ResultsStore(const ResultsStore&) = delete;
   ResultsStore& operator=(const ResultsStore&) = delete;
 
-  // Appends one run with its profiles in one transaction and returns its id. Its point key
-  // (sweep/sweep_grid.hpp) is recorded too unless an earlier run already holds it.
-  // before_commit, when given, runs inside that transaction with the new id (for example to write
-  // an output that must exist exactly when the run is stored); if it throws, nothing is stored.
-  std::int64_t insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit = {});
-  // A sweep point: in one transaction, appends the run, its profiles and its key unless a run
-  // with that key is already stored. Returns the run's id and whether it was appended now.
   struct Stored {
     std::int64_t id = 0;
     bool inserted = false;
   };
+  // Appends one run with its profiles and its point key (simulation/run_key.hpp) in one
+  // transaction, unless a run with the same key (every parameter and the seed: the same
+  // trajectory) is stored already: then nothing is written and that run's id is returned with
+  // inserted = false, so one trajectory is never stored, nor counted, twice.
+  // before_commit, when given, runs inside that transaction with the new id (for example to write
+  // an output that must exist exactly when the run is stored); if it throws, nothing is stored.
+  Stored insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit = {});
+  // The stored run with this identity (point key, seed included): its id and JSON, or nothing.
+  struct StoredRun {
+    std::int64_t id = 0;
+    std::string result_json;
+  };
+  std::optional<StoredRun> find_run(const RunSpec& spec);
+  // A sweep point: in one transaction, appends the run, its profiles and its key unless a run
+  // with that key is already stored. Returns the run's id and whether it was appended now.
   Stored insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed, int replica);
   // Keys of every stored point.
   std::unordered_set<std::string> point_keys();

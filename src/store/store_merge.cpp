@@ -133,6 +133,31 @@ class ResultComparer {
   SqlStatement same_;
 };
 
+// The first difference between the profiles of run `target_id` of the target and run `source_id`
+// of the source ("particle 3 K: 0.51 vs 0.52", "12 vs 11 particles"), "" when they are identical.
+std::string profiles_difference(sqlite3* target, std::int64_t target_id, sqlite3* source, std::int64_t source_id) {
+  static const char* kSql = "SELECT i, z_mean, z_mean_err, z_std, z_std_err, K, K_err FROM profiles WHERE run_id = ? ORDER BY i";
+  SqlStatement a(target, kSql), b(source, kSql);
+  a.bind(1, target_id);
+  b.bind(1, source_id);
+  for (int rows = 0;; ++rows) {
+    const bool ra = a.row(), rb = b.row();
+    if (!ra && !rb) return "";
+    if (ra != rb) {
+      int na = rows + ra, nb = rows + rb;
+      while (ra && a.row()) ++na;
+      while (rb && b.row()) ++nb;
+      return fmt::format("profiles: {} vs {} particles", na, nb);
+    }
+    for (int c = 0; c < a.columns(); ++c) {
+      const bool same = a.column_type(c) == b.column_type(c) &&
+                        (a.column_type(c) == SQLITE_NULL || a.column_double(c) == b.column_double(c));
+      if (!same)
+        return fmt::format("profile of particle {}, {}: {} vs {}", a.column_int(0), a.column_name(c), describe(a, c), describe(b, c));
+    }
+  }
+}
+
 void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
                 MergeReport& report) {
   const bool keyed = has_table(source, "run_points");
@@ -154,7 +179,8 @@ void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path
       const std::int64_t existing = found ? find.column_int(0) : 0;
       find.reset();
       if (found) {
-        const std::string diff = compare.first_difference(existing, rows);
+        std::string diff = compare.first_difference(existing, rows);
+        if (diff.empty()) diff = profiles_difference(target, existing, source, old_id);
         if (!diff.empty())
           throw MergeConflict(fmt::format("merge: conflicting results for point '{}': run {} of '{}' and run {} of '{}' "
                                           "differ ({}); nothing was merged",

@@ -196,3 +196,18 @@ def test_concurrent_runs_give_the_serial_numbers():
     for t in threads:
         t.join()
     assert out == serial
+
+
+def test_a_stored_run_is_read_back_not_stored_twice(tmp_path):
+    # The CLI's rule: the same parameters and seed are the same trajectory; a repeated call (a
+    # re-executed notebook cell, a loop without seeds) reads it back with a warning.
+    db = tmp_path / "r.db"
+    first = granchain.run(N=2, T=20, seed=4, db=db)
+    assert first["reused"] is False
+    with pytest.warns(UserWarning, match="is this run already"):
+        again = granchain.run(N=2, T=20, seed=4, db=db)
+    assert again["reused"] is True and again["stored"]["run_id"] == first["stored"]["run_id"]
+    assert again["n_coll"] == first["n_coll"]
+    assert len(granchain.Store(db).runs()) == 1
+    granchain.run(N=2, T=20, seed=5, db=db)  # a replica on purpose: another seed
+    assert len(granchain.Store(db).runs()) == 2
