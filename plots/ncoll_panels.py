@@ -169,7 +169,7 @@ def draw(family, prefix, k_min):
     local_exponents(axes[4], curves, fig)
     fig.suptitle(r"$N = %d$, $k_B T_0 = %g$, engine %s (crosses: window not stationary)" % (N, family["T0"], family["engine"]),
                  fontsize=12)
-    stem = "%s_N%d_T0%g_%s" % (prefix, N, family["T0"], family["engine"])
+    stem = family.get("stem") or "%s_N%d_T0%g_%s" % (prefix, N, family["T0"], family["engine"])
     save(fig, stem)
     plt.close(fig)
     return stem + ".png"

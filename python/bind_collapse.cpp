@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "config/input_error.hpp"
+#include "config/run_options.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "theory/collapse_theory.hpp"
@@ -25,6 +26,8 @@ double real_arg(const std::string& name, const py::object& v) {
   const std::string t = flag_text(v);
   double x = 0;
   const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
+    throw InputError(fmt::format("--{} = '{}' is out of range of a double", name, t));
   if (t.empty() || ec != std::errc() || p != t.data() + t.size())
     throw InputError(fmt::format("--{} = '{}' is not a number", name, t));
   return x;
@@ -34,6 +37,8 @@ long long integer_arg(const std::string& name, const py::object& v) {
   const std::string t = flag_text(v);
   long long x = 0;
   const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
+    throw InputError(fmt::format("--{} = '{}' is out of range of a 64-bit integer", name, t));
   if (t.empty() || ec != std::errc() || p != t.data() + t.size())
     throw InputError(fmt::format("--{} = '{}' is not an integer", name, t));
   return x;
@@ -90,14 +95,16 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   const double a = real("a", 1.0), v0 = real("v0", 1.0), dv0 = real("dv0", 0.1);
   if (!(a >= 0 && std::isfinite(a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", a));
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
+  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0);
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
   const long long realizations = integer("realizations", 1000);
   if (realizations < 1 || realizations > 10000000)
     throw InputError(fmt::format("--realizations = {} is out of range; valid range: integer 1 <= R <= 10000000", realizations));
   const long long seed = integer("seed", 1);
   if (seed < 0) throw InputError(fmt::format("--seed = {} is out of range; valid range: integer 0 <= seed <= 9223372036854775807", seed));
+  const bool threads_given = args.count("threads") > 0;
   long long threads = integer("threads", 0);
-  if (threads == 0) threads = static_cast<long long>(std::max(1u, std::thread::hardware_concurrency()));
+  if (!threads_given) threads = static_cast<long long>(std::max(1u, std::thread::hardware_concurrency()));
   if (threads < 1 || threads > 1024) throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", threads));
   const double dt_factor = real("dt-factor", 100.0);
   if (!(dt_factor >= 10 && dt_factor <= 1e6))

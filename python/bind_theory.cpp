@@ -55,23 +55,45 @@ py::dict elastic_column(long long N, double k, double T0, double m, double d, do
   return out;
 }
 
+// A formula of the particle number N, element by element over a scalar or an array: every N must
+// be a whole number (3.0 is 3; 3.9 is refused, not truncated) with 1 <= N <= 1e9 (the CLI's
+// `theory --N` range), so no value is silently truncated or wrapped.
+template <class F>
+py::object of_particle_number(F f, const char* function, const py::object& N) {
+  if (PyBool_Check(N.ptr())) throw py::value_error(fmt::format("{}: N = {} is not a particle number", function, std::string(py::str(N))));
+  const auto in = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(N);
+  if (!in) throw py::value_error(fmt::format("{}: N = {} is not a number or an array of numbers", function, std::string(py::repr(N))));
+  py::array_t<double> out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
+  const double* x = in.data();
+  double* y = out.mutable_data();
+  for (py::ssize_t i = 0; i < in.size(); ++i) {
+    if (std::isfinite(x[i]) && x[i] != std::floor(x[i]))
+      throw py::value_error(fmt::format("{}: N = {} is not a whole number; valid range: integer 1 <= N <= 1e9", function, x[i]));
+    if (!(x[i] >= 1 && x[i] <= 1e9))
+      throw py::value_error(fmt::format("{}: N = {} is out of range; valid range: integer 1 <= N <= 1e9", function, x[i]));
+    y[i] = f(x[i]);
+  }
+  if (in.ndim() == 0) return py::float_(y[0]);
+  return py::object(out);
+}
+
 }  // namespace
 
 void bind_theory(py::module_& m) {
   using namespace granchain::theory;
   // e_c^wall and e_c as functions of N (integers), the rest of e.
-  m.def("ec_wall_icw", py::vectorize(&ec_wall_icw), py::arg("N"),
+  m.def("ec_wall_icw", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_icw(static_cast<int>(n)); }, "ec_wall_icw", N); }, py::arg("N"),
         "ICW model, Eq. (icw): e_c^wall(N) = tan^2(pi/4 (1 - 1/N)); N >= 1.");
-  m.def("ec_wall_icw_asymptotic", py::vectorize(&ec_wall_icw_asymptotic), py::arg("N"),
+  m.def("ec_wall_icw_asymptotic", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_icw_asymptotic(static_cast<int>(n)); }, "ec_wall_icw_asymptotic", N); }, py::arg("N"),
         "Large-N form of the ICW e_c^wall, Eq. (ec_icw_wall): 1 - pi/N; N >= 1.");
   m.def("cushion_Nc_wall", py::vectorize(&cushion_Nc_wall), py::arg("e"),
         "Cushion model: the least N that collapses on a wall at e, ln(4/(1-e))/(1-e); 0 <= e < 1.");
-  m.def("ec_wall_cushion", py::vectorize(&ec_wall_cushion), py::arg("N"),
+  m.def("ec_wall_cushion", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_cushion(n); }, "ec_wall_cushion", N); }, py::arg("N"),
         "Cushion model's e_c^wall(N), the inverse of cushion_Nc_wall; N >= 2.");
-  m.def("ec_wall_cushion_asymptotic", py::vectorize(&ec_wall_cushion_asymptotic), py::arg("N"),
+  m.def("ec_wall_cushion_asymptotic", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_cushion_asymptotic(n); }, "ec_wall_cushion_asymptotic", N); }, py::arg("N"),
         "Large-N form of the cushion e_c^wall, Eq. (ec_cushion); N >= 1.");
   m.def("ec3", &ec3, "e_c(3) = 7 - 4 sqrt(3) (McNamara & Young).");
-  m.def("ec_free", py::vectorize(&ec_free), py::arg("N"),
+  m.def("ec_free", [](const py::object& N) { return of_particle_number([](double n) { return ec_free(static_cast<int>(n)); }, "ec_free", N); }, py::arg("N"),
         "Free-space e_c(N) = tan^2(pi/4 (1 - 2/N)) (Sec. III.B); N >= 3, ec_free(3) = ec3().");
   m.def("m_star", py::vectorize(&m_star), py::arg("e"), "Stable fixed point m* of the three-body map, Eq. (mmdash); 0 < e <= e_c(3).");
   m.def("m_prime_star", py::vectorize(&m_prime_star), py::arg("e"), "Fixed point m'*, Eq. (mdashm); 0 < e <= e_c(3).");

@@ -114,6 +114,53 @@ const std::vector<BadInputRow> kRows = {
     {"trace --N 3 --to 1 --output t.csv --events t.csv", 2, {"--events: 't.csv' is the same file as --output"}, kAll},
     {"merge --into m.db params.json", 2, {"merge source: 'params.json'"}, kAll},
 
+    // Every output against every input and every other output, whatever its flag: a store that is
+    // the config or sweep file, figures whose names are computed (analyze --plot's panels, trace's
+    // PDF beside its PNG, reproduce's files in --out), standard output where a file is needed.
+    {"run --config params.json --db params.json", 2, {"--db: 'params.json' is the same file as --config 'params.json'"}, kAll},
+    {"run --config empty.toml --db empty.toml --T 1", 2, {"--db: 'empty.toml' is the same file as --config"}, kAll},
+    {"sweep --sweep sweep.toml --db sweep.toml --T 1", 2, {"--db: 'sweep.toml' is the same file as --sweep"}, kAll},
+    {"analyze --db q_N2_T01_exact.png --plot q", 2, {"--plot: 'q_N2_T01_exact.png' is the same file as --db"}, kAll},
+    {"analyze --db curve.db --plot r --json r_N2_T01_exact.pdf", 2, {"--plot: 'r_N2_T01_exact.pdf' is the same file as --json"}, kAll},
+    {"trace --N 3 --to 1 --output t.pdf --plot t.png", 2, {"--plot (its PDF): 't.pdf' is the same file as --output"}, kAll},
+    {"trace --N 3 --to 1 --output t.csv --plot t.svg", 2, {"--plot: 't.svg' must name a PNG file"}, kAll},
+    {"trace --N 3 --to 1 --output -", 2, {"--output: '-' (standard output) is not possible"}, kAll},
+    {"collapse --N 3 --e 0.5 --k 1e4 --events - --no-db", 2, {"--events: '-' (standard output) is not possible"}, kAll},
+    {"reproduce --figure fig1 --db out/fig1-trace.csv --out out", 2, {"--db: 'out/fig1-trace.csv' lies in --out 'out'"}, kAll},
+    {"merge --into '' store.db", 2, {"--into: the file name is empty"}, kAll},
+    {"run --N 2 --T 1 --db ''", 2, {"--db: the path is empty"}, kAll},
+
+    // A store that lacks a column or a table is named as damaged, by every command that reads it.
+    {"analyze --db nobins.db", 2, {"--db: 'nobins.db' is damaged", "the column 'bins' of the table 'runs'"}, kAll},
+    {"export --db noprofiles.db", 2, {"--db: 'noprofiles.db' is damaged", "the table 'profiles'"}, kAll},
+    {"merge --into m.db nobins.db", 2, {"merge source: 'nobins.db' is damaged"}, kAll},
+
+    // Numbers beyond a double, integers beyond 64 bits: out of range, with the range, not "not a number".
+    {"run --e 1e309", 2, {"--e = '1e309' is out of range: larger than the largest double", "0 < e <= 1"}, kAll},
+    {"run --k 1e-400", 2, {"--k = '1e-400' is out of range: smaller than the least positive double"}, kAll},
+    {"run --seed 9223372036854775808", 2, {"--seed = '9223372036854775808' is out of range"}, kAll},
+    {"sweep --e 1e309 --dry-run", 2, {"--e", "is out of range: beyond the range of a double"}, kAll},
+    {"run --config huge.json", 2, {"--config: 'huge.json' holds a number out of range"}, kAll},
+    {"sweep --sweep huge.json --dry-run", 2, {"--sweep: 'huge.json' holds a number out of range"}, kAll},
+
+    // Ranges that hold in every command: collapse's k against its clock, its integers parsed as run's.
+    {"collapse --N 3 --e 0.05 --k 1e300 --no-db", 2, {"--k: 1e+300 is out of range", "1e6 times the clock's resolution"}, kAll},
+    {"collapse --N 3 --e 0.05 --k 1e4:1e20:x100 --no-db", 2, {"--k: 1e+18 is out of range"}, kAll},
+    {"collapse --threads 0 --no-db", 2, {"--threads = '0'", "1 <= threads <= 1024"}, kAll},
+    {"collapse --seed 18446744073709551616 --no-db", 2, {"--seed = '18446744073709551616'", "9223372036854775807"}, kAll},
+    {"collapse --N 010 --e 0.5 --k 1e4 --realizations 4 --no-db", 0, {}, kAll, {"N = 10,"}},  // decimal, as run reads it
+    {"collapse --N 3 --e 0.05 --k 1e4 --realizations 4 --threads 1 --no-db -q", 0, {}, kAll},
+
+    // Profile samples: 16 to 1e10 per window, at times the clock resolves; never a run without end.
+    {"run --N 5 --T 5 --sample-interval 1e-20", 2, {"--sample-interval = 1e-20 is out of range", "16 to 1e10 profile samples"}, kAll},
+    {"run --N 5 --T 1 --sample-interval 1e-17", 2, {"--sample-interval = 1e-17 is out of range"}, kAll},
+    {"run --N 5 --T 0.1", 2, {"--T = 0.1 is out of range", "16 sample-intervals <= T"}, kAll},
+    {"run --engine hard --N 5 --T 1e5 --transient 1e9 --sample-interval 1e-3", 2, {"--sample-interval = 1e-3 is out of range", "clock's resolution"}, kAll},
+
+    // A command that is not one: the list of commands.
+    {"nosuch", 2, {"'nosuch' is not a command; commands: run, theory"}, kAll},
+    {"", 2, {"name a command first; commands: run"}, kAll},
+
     // --out of reproduce: a folder; --print-sweeps writes nothing.
     {"reproduce --figure fig1 --db store.db --out params.json", 2, {"--out: 'params.json' is a file, not a folder"}, kAll},
     {"reproduce --figure fig1 --db store.db --out /proc/x", 2, {"--out: cannot create the folder '/proc/x'"}, kAll},
@@ -180,11 +227,24 @@ void prepare_folder(const fs::path& dir) {
   write("date.toml", "N = 3\nstart = 1979-05-27\n");
   write("numbers.toml", "N = 3\nk = 1_000_000  # every TOML number\nT = 1.0\ntransient = 1e-1\n");
   write("bad.json", "{\"N\": 5, \"e\": ");
+  write("huge.json", "{\"e\": 1e400}");
+  write("empty.toml", "");
+  write("sweep.toml", "N = 3\n");
   write("big.toml", "N = 3\n" + std::string(std::size_t{1} << 20, '#') + "\n");
   // A results store holding one run.
   const int code = run_shell("cd '" + dir.string() + "' && '" GRANCHAIN_BINARY "' run --N 2 --T 1 --transient 0 --quiet --db store.db");
   ASSERT_EQ(code, 0) << "could not make the store";
   ASSERT_TRUE(fs::exists(dir / "store.db"));
+  // A store with one curve n_coll(k), and a copy under the name of analyze --plot q's panel; copies
+  // of the first, damaged (a column, a table gone).
+  ASSERT_EQ(run_shell("cd '" + dir.string() + "' && '" GRANCHAIN_BINARY "' sweep --N 2 --e 0.5 --k 1e4,1e5,1e6 --T 20 --transient 0 -q --db curve.db"), 0);
+  fs::copy_file(dir / "curve.db", dir / "q_N2_T01_exact.png");
+  fs::copy_file(dir / "store.db", dir / "nobins.db");
+  fs::copy_file(dir / "store.db", dir / "noprofiles.db");
+  fs::create_directories(dir / "out");
+  fs::copy_file(dir / "store.db", dir / "out" / "fig1-trace.csv");
+  ASSERT_EQ(run_shell("sqlite3 '" + (dir / "nobins.db").string() + "' 'ALTER TABLE runs DROP COLUMN bins'"), 0);
+  ASSERT_EQ(run_shell("sqlite3 '" + (dir / "noprofiles.db").string() + "' 'DROP TABLE profiles'"), 0);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include "cli/interrupt_message.hpp"
 #include "config/input_error.hpp"
 #include "provenance.hpp"
 #include "store/output_file.hpp"
@@ -75,7 +78,20 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
+  // Every file --plot and --json write, against the store and each other, before any is written.
+  try {
+    std::vector<NamedPath> outputs = {{"--json", json_requested && !json_stdout ? o.json_path : ""}};
+    if (!o.plot_prefix.empty())
+      for (const std::string& f : ncoll_panel_files(a, o.plot_prefix)) outputs.push_back({"--plot", f});
+    check_outputs(outputs, {{"--db", o.db}});
+  } catch (const InputError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitBadInput;
+  }
   if (!o.plot_prefix.empty()) {
+    announce_on_interrupt(fmt::format("the figures were not all drawn: those of {}_* that exist are whole, the store is "
+                                      "unchanged; repeat the command", o.plot_prefix),
+                          o.plot_prefix + ".json.tmp" + std::to_string(::getpid()));
     const std::string problem = draw_ncoll_panels(a, o.plot_prefix);
     if (!problem.empty()) {
       fmt::print(stderr, "granchain: error: {}\n", problem);

@@ -17,6 +17,7 @@
 #include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
 #include "store/output_file.hpp"
+#include "config/run_options.hpp"
 #include "config/value_list.hpp"
 #include "engines/engine.hpp"
 #include "simulation/collapse_run.hpp"
@@ -45,7 +46,10 @@ struct CollapseFlags {
   long long collapse_collisions = 1000;
   double collapse_time = 1e-9;
   std::string events_path, json_path, db_path = "granchain.db";
+  // The integer flags as given, parsed by the shared integer parser (decimal, whole, in range).
+  std::string N_text = "3", realizations_text = "1000", seed_text = "1", threads_text, collapse_collisions_text = "1000";
   CLI::Option* json_option = nullptr;
+  CLI::Option* threads_option = nullptr;
   CLI::Option* k_option = nullptr;
   CLI::Option* tc_option = nullptr;
   bool no_db = false, quiet = false;
@@ -61,7 +65,7 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_ = app.add_subcommand("collapse", "Count the collisions n_tot of an inelastic collapse in free space (or on a wall), "
                                         "averaged over random launches.");
   auto& o = *impl_;
-  sub_->add_option("--N", o.N, "number of particles; integer 2 <= N <= 100000; default 3");
+  sub_->add_option("--N", o.N_text, "number of particles; integer 2 <= N <= 100000; default 3");
   sub_->add_option("--e", o.e, "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1); 0 < e <= 1; default 0.03")
       ->type_name("LIST");
   o.k_option = sub_->add_option("--k", o.k, "elastic constants: a list or range (1e4:1e12:x10); k > 0; default 1e4:1e10:x10 "
@@ -74,15 +78,15 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_->add_option("--v0", o.v0, "launch speed (inward in free space, toward the wall); v0 > 0; default 1");
   sub_->add_option("--dv0", o.dv0, "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1); dv0 >= 0; default 0.1");
   sub_->add_option("--stop", o.stop, "ends (the paper's, free space only; default there) or strict (default on a wall)");
-  sub_->add_option("--realizations", o.realizations, "random launches per (e, k); integer 1 <= R <= 10000000; default 1000");
-  sub_->add_option("--seed", o.seed, "base seed; launch r uses derive_seed(seed, r), the same at every e and k; "
+  sub_->add_option("--realizations", o.realizations_text, "random launches per (e, k); integer 1 <= R <= 10000000; default 1000");
+  sub_->add_option("--seed", o.seed_text, "base seed; launch r uses derive_seed(seed, r), the same at every e and k; "
                                      "integer 0 <= seed <= 9223372036854775807; default 1");
-  sub_->add_option("--threads", o.threads, "threads over realisations; 1 <= threads <= 1024; default all cores "
+  o.threads_option = sub_->add_option("--threads", o.threads_text, "threads over realisations; 1 <= threads <= 1024; default all cores "
                                            "(results do not depend on it)");
   sub_->add_option("--dt-factor", o.dt_factor, "reference engines: dt = tau_c / dt-factor; 10 <= dt-factor <= 1e6; default 100");
   o.tc_option = sub_->add_option("--tc", o.tc, "hard engine: TC model time t_c (a collision within t_c of a particle's "
                                                "previous one is elastic); tc >= 0; default 0 (off)");
-  sub_->add_option("--collapse-collisions", o.collapse_collisions,
+  sub_->add_option("--collapse-collisions", o.collapse_collisions_text,
                    "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e9; default 1000");
   sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
   sub_->add_option("--events", o.events_path, "write every collision (e, k, realisation, index, contact begin and end "
@@ -132,7 +136,12 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   std::vector<double> es, ks;
   CollapseSpec base;
   try {
-    if (o.N < 2 || o.N > 100000) throw InputError(fmt::format("--N = {} is out of range; valid range: integer 2 <= N <= 100000", o.N));
+    o.N = static_cast<int>(parse_integer_in(o.N_text, "--N", 2, 100000));
+    o.realizations = parse_integer_in(o.realizations_text, "--realizations", 1, 10000000);
+    o.seed = parse_integer_in(o.seed_text, "--seed", 0, 9223372036854775807LL);
+    o.threads = o.threads_option->count() == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
+                                                           : static_cast<int>(parse_integer_in(o.threads_text, "--threads", 1, 1024));
+    o.collapse_collisions = parse_integer_in(o.collapse_collisions_text, "--collapse-collisions", 2, 1000000000);
     es = parse_value_list(o.e, "--e");
     for (double e : es)
       if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
@@ -149,30 +158,26 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
       if (o.tc_option->count() > 0) throw InputError("--tc: the TC model belongs to --engine hard");
     }
     if (o.setup != "free" && o.setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", o.setup));
+    if (!(o.a >= 0 && std::isfinite(o.a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", o.a));
+    if (!(o.v0 > 0 && std::isfinite(o.v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", o.v0));
+    const ChainParameters defaults;
+    if (!hard)
+      for (double e : es)
+        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0);
     base.setup = o.setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
     if (o.stop.empty()) o.stop = base.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
     if (o.stop != "ends" && o.stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", o.stop));
     base.rule = o.stop == "ends" ? StopRule::Ends : StopRule::Strict;
     if (base.rule == StopRule::Ends && base.setup == CollapseSetup::Wall)
       throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
-    if (!(o.a >= 0 && std::isfinite(o.a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", o.a));
-    if (!(o.v0 > 0 && std::isfinite(o.v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", o.v0));
     if (!(o.dv0 >= 0 && std::isfinite(o.dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", o.dv0));
-    if (o.realizations < 1 || o.realizations > 10000000)
-      throw InputError(fmt::format("--realizations = {} is out of range; valid range: integer 1 <= R <= 10000000", o.realizations));
-    if (o.seed < 0) throw InputError(fmt::format("--seed = {} is out of range; valid range: integer 0 <= seed <= 9223372036854775807", o.seed));
-    if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    if (o.threads < 1 || o.threads > 1024) throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", o.threads));
     if (!(o.dt_factor >= 10 && o.dt_factor <= 1e6))
       throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", o.dt_factor));
     if (!(o.tc >= 0 && std::isfinite(o.tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", o.tc));
-    if (o.collapse_collisions < 2 || o.collapse_collisions > 1000000000)
-      throw InputError(fmt::format("--collapse-collisions = {} is out of range; valid range: 2 <= n <= 1e9", o.collapse_collisions));
     if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
       throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
-    const NamedPath db{"--db", o.no_db ? "" : o.db_path};
-    if (!o.events_path.empty()) check_output_file(o.events_path, "--events", {db});
-    if (json_requested && !json_stdout) check_output_file(o.json_path, "--json", {db, {"--events", o.events_path}});
+    check_outputs({{"--db", o.no_db ? "" : o.db_path}, {"--events", o.events_path},
+                   {"--json", json_requested && !json_stdout ? o.json_path : ""}}, {});
     if (!o.no_db) ResultsStore::preflight(o.db_path);
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include "cli/interrupt_message.hpp"
 #include "config/input_error.hpp"
 #include "store/output_file.hpp"
 #include "config/value_list.hpp"
@@ -80,6 +83,9 @@ int execute_export(const std::shared_ptr<ExportFlags>& impl_) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
+  announce_on_interrupt(o.output.empty() ? "the export was not finished; what was printed is incomplete; the store is unchanged"
+                                          : fmt::format("the export was not finished; {} was not written; the store is unchanged", o.output),
+                        o.output.empty() ? "" : o.output + ".tmp" + std::to_string(::getpid()));
   std::string text;
   try {
     text = export_results(o.db, sel, format);

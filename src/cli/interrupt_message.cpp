@@ -16,12 +16,13 @@ namespace {
 // (both async-signal-safe).
 std::array<char, 1024> sigint_message{}, sigterm_message{};
 std::size_t sigint_length = 0, sigterm_length = 0;
-std::array<char, 4096> unfinished{};
+std::array<std::array<char, 4096>, 4> unfinished{};
 
 void on_signal(int sig) {
   const char* msg = sig == SIGINT ? sigint_message.data() : sigterm_message.data();
   const std::size_t len = sig == SIGINT ? sigint_length : sigterm_length;
-  if (unfinished[0] != '\0') ::unlink(unfinished.data());
+  for (const auto& file : unfinished)
+    if (file[0] != '\0') ::unlink(file.data());
   [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, len);
   ::signal(sig, SIG_DFL);
   ::raise(sig);
@@ -38,7 +39,14 @@ std::size_t store(std::array<char, Size>& buffer, const std::string& text) {
 }  // namespace
 
 void announce_on_interrupt(const std::string& what_was_kept, const std::string& unfinished_file) {
-  store(unfinished, unfinished_file.size() < unfinished.size() ? unfinished_file : std::string());
+  announce_on_interrupt(what_was_kept, std::vector<std::string>{unfinished_file});
+}
+
+void announce_on_interrupt(const std::string& what_was_kept, const std::vector<std::string>& unfinished_files) {
+  for (std::size_t i = 0; i < unfinished.size(); ++i) {
+    const std::string f = i < unfinished_files.size() ? unfinished_files[i] : std::string();
+    store(unfinished[i], f.size() < unfinished[i].size() ? f : std::string());
+  }
   sigint_length = store(sigint_message, fmt::format("\ngranchain: interrupted by SIGINT; {}\n", what_was_kept));
   sigterm_length = store(sigterm_message, fmt::format("\ngranchain: interrupted by SIGTERM; {}\n", what_was_kept));
   struct sigaction sa {};

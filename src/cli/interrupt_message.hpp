@@ -4,6 +4,7 @@
 // before (exit status 130 for SIGINT, 143 for SIGTERM), so the results store's transactions and
 // the shell's conventions are untouched.
 #include <string>
+#include <vector>
 
 namespace granchain {
 
@@ -11,5 +12,7 @@ namespace granchain {
 // "granchain: interrupted by SIGINT|SIGTERM; <what_was_kept>", remove `unfinished_file` (a
 // temporary file being written, if any) and then re-raise the signal.
 void announce_on_interrupt(const std::string& what_was_kept, const std::string& unfinished_file = "");
+// The same with up to four unfinished files.
+void announce_on_interrupt(const std::string& what_was_kept, const std::vector<std::string>& unfinished_files);
 
 }  // namespace granchain

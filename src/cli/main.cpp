@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <vector>
 
 #include "cli/subcommand.hpp"
 #include "cli/suggest.hpp"
+#include "config/input_error.hpp"
 #include "version.hpp"
 #include "provenance.hpp"
 
@@ -21,11 +23,16 @@ namespace {
 // "--NN is not a flag of run; did you mean --N?", else "".
 std::string suggestion(const CLI::App& app, const CLI::App* sub, int argc, char** argv) {
   if (!sub) {
-    if (argc < 2 || argv[1][0] == '-') return "";
     std::vector<std::string> names;
-    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(s->get_name());
+    std::string list;
+    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; })) {
+      names.push_back(s->get_name());
+      list += (list.empty() ? "" : ", ") + s->get_name();
+    }
+    if (argc < 2 || argv[1][0] == '-') return fmt::format("name a command first; commands: {}", list);
     const std::string near = granchain::nearest_name(argv[1], names);
-    return near.empty() ? "" : fmt::format("'{}' is not a command; did you mean '{}'?", argv[1], near);
+    return near.empty() ? fmt::format("'{}' is not a command; commands: {}", argv[1], list)
+                        : fmt::format("'{}' is not a command; did you mean '{}'?", argv[1], near);
   }
   std::vector<std::string> flags;
   for (const CLI::Option* o : sub->get_options())
@@ -83,10 +90,20 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     if (const auto* c = selected()) rc = c->execute();
-  } catch (const std::exception& e) {
-    if (std::ferror(stdout)) return standard_output_failed();
+  } catch (const granchain::InputError& e) {  // bad input found late: nothing was written
     fmt::print(stderr, "granchain: error: {}\n", e.what());
-    return 1;
+    return granchain::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "granchain: error: not enough memory for what was asked (fewer particles, bins, launches or "
+                       "values per list need less); what was stored before is kept\n");
+    return granchain::kExitBadInput;
+  } catch (const std::exception& e) {
+    // Each command turns its expected failures into its own message and code; reaching this is a
+    // fault of granchain, reported with the exit code of a failed output.
+    if (std::ferror(stdout)) return standard_output_failed();
+    fmt::print(stderr, "granchain: error: internal error ({}); the command stopped, what was stored before is kept; please "
+                       "report it with the command line\n", e.what());
+    return granchain::kExitStoreFailed;
   }
   // Whatever was printed must have reached standard output (a full disk, a closed pipe). A command
   // that failed has said so already.

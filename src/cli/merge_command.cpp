@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/interrupt_message.hpp"
 #include "store/store_merge.hpp"
 
 namespace granchain {
@@ -37,6 +38,9 @@ Subcommand add_merge_command(CLI::App& app) {
 namespace {
 
 int execute_merge(const std::shared_ptr<MergeFlags>& impl_) {
+  announce_on_interrupt(fmt::format("nothing was merged: the merge is one transaction, which SQLite rolls back when {} is "
+                                    "next opened; the sources are untouched; repeat the command",
+                                    impl_->into.empty() ? "--into" : impl_->into));
   try {
     const MergeReport r = merge_stores(impl_->into, impl_->sources);
     if (!impl_->quiet)

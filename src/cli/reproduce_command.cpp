@@ -64,6 +64,21 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
         throw InputError(fmt::format("--out: '{}' is a file, not a folder; name a folder for the figures and reports", o.out));
       std::filesystem::create_directories(o.out, ec);
       if (ec) throw InputError(fmt::format("--out: cannot create the folder '{}': {}", o.out, ec.message()));
+      // Every file a reproduction writes into --out is named after a figure (fig5.png, fig1-trace.csv,
+      // table1.csv, limit-free.pdf, ...) or is a report: a store there under such a name would be overwritten.
+      const std::filesystem::path db_path(o.db);
+      const std::filesystem::path db_folder = db_path.parent_path().empty() ? "." : db_path.parent_path();
+      if (std::filesystem::equivalent(db_folder, o.out, ec)) {
+        const std::string name = db_path.filename().string();
+        std::vector<std::string> owned = {"report"};
+        for (const FigureEntry& f : figures()) owned.push_back(f.name);
+        for (const std::string& stem : owned)
+          if (name.rfind(stem, 0) == 0)
+            throw InputError(fmt::format("--db: '{}' lies in --out '{}' under a name that the reproduction writes there "
+                                         "(figures, data and reports start with a figure's name or 'report'); keep the "
+                                         "store elsewhere or rename it",
+                                         o.db, o.out));
+      }
       for (const FigureEntry* f : chosen) check_output_file(output_path(o, report_name(f->name)), "--out", {{"--db", o.db}});
       if (is_figure_group(o.figure)) check_output_file(output_path(o, report_name(o.figure)), "--out", {{"--db", o.db}});
     }

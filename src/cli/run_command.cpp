@@ -165,9 +165,10 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
         throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
       opts.spec.engine.audit = true;
     }
+    // The store is written too: it may not be the config file, nor the JSON the store.
+    check_outputs({{"--db", opts.use_db ? opts.db_path : ""}, {"--json", json_requested && !json_stdout ? impl.json_path : ""}},
+                  {{"--config", impl.config_path}});
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
-    if (json_requested && !json_stdout)
-      check_output_file(impl.json_path, "--json", {{"--db", opts.use_db ? opts.db_path : ""}, {"--config", impl.config_path}});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -234,6 +235,7 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     return kExitStoreFailed;
   }
   const std::string kept = stored.empty() ? "" : fmt::format("; the run is stored ({})", stored);
+  if (!stored.empty()) announce_on_interrupt(fmt::format("the run is stored ({}); its other outputs may be missing", stored));
   try {
     if (json_file) {
       json_file->commit();

@@ -19,6 +19,7 @@
 #include "cli/interrupt_message.hpp"
 #include "config/run_options.hpp"
 #include "config/value_list.hpp"
+#include "store/output_file.hpp"
 #include "store/results_store.hpp"
 #include "sweep/mpi_sweep.hpp"
 #include "sweep/sweep_grid.hpp"
@@ -177,7 +178,10 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       throw InputError(fmt::format("--progress-every = {} is out of range; valid range: > 0", impl.progress_every));
     points = build_sweep_points(def);
     if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
+    if (!impl.sweep_path.empty()) check_output_file(db_path, "--db", {{"--sweep", impl.sweep_path}});
+    // A dry run only reads the store, if there is one.
     if (rank0 && !impl.dry_run) ResultsStore::preflight(db_path);
+    if (rank0 && impl.dry_run && access(db_path.c_str(), F_OK) == 0) ResultsStore::preflight(db_path, ResultsStore::Access::ReadOnly);
   } catch (const InputError& e) {
     return fail(e.what(), kExitBadInput);
   } catch (const StoreError& e) {
@@ -196,10 +200,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     try {
       std::unordered_set<std::string> done;
       if (impl.dry_run) {
-        if (access(db_path.c_str(), F_OK) == 0) {
-          ResultsStore::preflight(db_path);
-          done = ResultsStore(db_path).point_keys();
-        }
+        if (access(db_path.c_str(), F_OK) == 0) done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
       } else {
         // With a time limit, points that no invocation can fit in it are refused before the store
         // is opened for writing (or created), so nothing is written.

@@ -1,10 +1,15 @@
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include <memory>
 
 #include <cmath>
 #include <map>
 
+#include <unistd.h>
+
+#include "cli/interrupt_message.hpp"
 #include "config/input_error.hpp"
 #include "store/output_file.hpp"
 #include "reproduce/plot_script.hpp"
@@ -84,13 +89,21 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
       throw InputError(fmt::format("--realization = {} is out of range; valid range: 0 <= realization <= 1e9", o.realization));
     if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0))
       throw InputError("--a, --v0, --dv0: valid ranges a >= 0, v0 > 0, dv0 >= 0");
-    check_output_file(o.output, "--output");
-    if (!o.events_path.empty()) check_output_file(o.events_path, "--events", {{"--output", o.output}});
-    if (!o.plot_path.empty()) check_output_file(o.plot_path, "--plot", {{"--output", o.output}, {"--events", o.events_path}});
+    std::string plot_pdf;  // plots/spacetime.py writes the PNG and a PDF beside it
+    if (!o.plot_path.empty()) {
+      const std::filesystem::path png(o.plot_path);
+      if (png.extension() != ".png" || png.stem().empty())
+        throw InputError(fmt::format("--plot: '{}' must name a PNG file (NAME.png); the PDF is written beside it", o.plot_path));
+      plot_pdf = std::filesystem::path(png).replace_extension(".pdf").string();
+    }
+    check_outputs({{"--output", o.output}, {"--events", o.events_path}, {"--plot", o.plot_path}, {"--plot (its PDF)", plot_pdf}}, {});
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
+  const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
+  announce_on_interrupt(fmt::format("the trace was not finished; {} was not written", o.output),
+                        {o.output + tmp_suffix, o.events_path.empty() ? "" : o.events_path + tmp_suffix});
   Trajectory tr;
   try {
     tr = record_trajectory(spec);

@@ -51,6 +51,11 @@ std::map<std::string, std::string> parse_json(const std::string& path, const std
     j = nlohmann::json::parse(text, watch);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: '{}' is not valid JSON (byte {})", option, path, e.byte));
+  } catch (const nlohmann::json::out_of_range&) {  // a number beyond a double ("e": 1e400)
+    throw InputError(fmt::format("{}: '{}' holds a number out of range: beyond the range of a double (about 1e-308 to "
+                                 "1e308 in magnitude)", option, path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: '{}' cannot be read as JSON (error {})", option, path, e.id));
   }
   if (!repeated.empty()) throw InputError(fmt::format("{}: '{}': '{}' is set twice", option, path, repeated));
   if (!j.is_object()) throw InputError(fmt::format("{}: '{}' must hold one JSON object of parameters", option, path));

@@ -31,6 +31,11 @@ double parse_real(const std::string& name, const RawValue& v, const std::string&
   const std::string t = strip(v.text);
   double x = 0;
   const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())  // beyond a double, or below its least
+    throw InputError(fmt::format("--{} = '{}'{} is out of range: {}; valid range: {}", name, v.text, where(v),
+                                 std::abs(std::strtod(t.c_str(), nullptr)) > 1 ? "larger than the largest double"
+                                                                                : "smaller than the least positive double",
+                                 range));
   if (t.empty() || ec != std::errc() || p != t.data() + t.size())
     throw InputError(fmt::format("--{} = '{}'{} is not a number; valid range: {}", name, v.text, where(v), range));
   if (!std::isfinite(x))
@@ -42,6 +47,8 @@ long long parse_integer(const std::string& name, const RawValue& v, const std::s
   const std::string t = strip(v.text);
   long long x = 0;
   const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
+    throw InputError(fmt::format("--{} = '{}'{} is out of range; valid range: {}", name, v.text, where(v), range));
   if (t.empty() || ec != std::errc() || p != t.data() + t.size())
     throw InputError(fmt::format("--{} = '{}'{} is not an integer; valid range: {}", name, v.text, where(v), range));
   return x;
@@ -260,6 +267,23 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
 
 }  // namespace
 
+double largest_resolved_k(double m, double e, double t) {
+  const double tau_min = kResolutionSteps * ulp(t);
+  const double l2 = std::log(e) * std::log(e);
+  return m * (std::numbers::pi * std::numbers::pi + l2) / (2 * tau_min * tau_min);
+}
+
+void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0) {
+  const double t = 2.0 * (N + 1) * (a + d) / v0;
+  const double k_max = largest_resolved_k(m, e, t);
+  if (!(k <= k_max))
+    throw InputError(fmt::format("--k: {:g} is out of range; valid range: 0 < k <= {} at e = {:g}, N = {}, a = {:g}, v0 = {:g} "
+                                 "(a contact must last at least 1e6 times the clock's resolution, {:.3g}, over the launch's "
+                                 "time scale 2 (N + 1)(a + d) / v0 = {:.3g})",
+                                 k, rounded(k_max, true), e, N, a, v0, ulp(t), t));
+}
+
+
 const std::vector<ParameterInfo>& run_parameters() {
   static const std::vector<ParameterInfo> infos = [] {
     std::vector<ParameterInfo> v;
@@ -295,12 +319,30 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   }
   o.spec.T = late.count("T") ? late["T"] : (o.spec.params.N < 50 ? 1e4 : 1e3);
   o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;
-  // A window shorter than one profile sample cannot be analysed.
-  if (o.spec.T < o.spec.sample_interval)
-    throw InputError(fmt::format("--T = {} is shorter than --sample-interval = {}; valid range: T >= sample-interval",
-                                 o.spec.T, o.spec.sample_interval));
   check_contact_time(o, raw);
   check_height_scale(o, raw);
+  // Profiles are sampled every sample-interval over the window T: blocking needs at least 16
+  // samples (the least --bins), more than 1e10 would take longer to sample than any run is meant to, and the sample
+  // times must be told apart by the clock (1e6 resolutions at transient + T, as contacts are).
+  {
+    const double samples = o.spec.T / o.spec.sample_interval, t_end = o.spec.transient + o.spec.T;
+    const bool interval_given = raw.count("sample-interval") > 0;
+    const std::string name = interval_given || !raw.count("T") ? "sample-interval" : "T";
+    const RawValue& given = given_or(raw, name, name == "T" ? o.spec.T : o.spec.sample_interval);
+    if (!(samples >= 16 && samples <= 1e10))
+      out_of_range(name, given,
+                   name == "T" ? fmt::format("16 sample-intervals <= T <= 1e10 sample-intervals, i.e. {} <= T <= {} at "
+                                             "sample-interval = {} (a window of 16 to 1e10 profile samples)",
+                                             rounded(16 * o.spec.sample_interval, false), rounded(1e10 * o.spec.sample_interval, true),
+                                             o.spec.sample_interval)
+                               : fmt::format("T / 1e10 <= sample-interval <= T / 16, i.e. {} <= sample-interval <= {} at T = {} "
+                                             "(a window of 16 to 1e10 profile samples)",
+                                             rounded(o.spec.T / 1e10, false), rounded(o.spec.T / 16, true), o.spec.T));
+    if (o.spec.sample_interval < kResolutionSteps * ulp(t_end))
+      out_of_range("sample-interval", given_or(raw, "sample-interval", o.spec.sample_interval),
+                   fmt::format("sample-interval >= {} at transient + T = {} (1e6 times the clock's resolution there)",
+                               rounded(kResolutionSteps * ulp(t_end), false), t_end));
+  }
   return o;
 }
 

@@ -36,4 +36,15 @@ struct RawValue {
 // T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.
 RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw);
 
+// The clock's resolution limit of a soft contact: a contact (tau_c, Eqs. Dd, tauc) must last at
+// least 1e6 resolutions of the clock at the latest time t it can happen, i.e.
+// k <= m (pi^2 + ln^2 e) / (2 (1e6 ulp(t))^2). The largest such k.
+double largest_resolved_k(double m, double e, double t);
+
+// A free-space or wall collapse (granchain collapse) has no measuring time: its clock runs over
+// the launch, t ~ 2 (N + 1)(a + d) / v0 (the outer particles reach the middle, or the wall, by
+// (N - 1)(a + d) / 2v0 and (N a + (N - 1) d) / v0, with a factor 2 for the spread of speeds and the
+// rebounds). Throws InputError "--k: ... is out of range" when k exceeds largest_resolved_k there.
+void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0);
+
 }  // namespace granchain

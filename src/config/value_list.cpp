@@ -19,6 +19,9 @@ double number(const std::string& t, const std::string& option, const std::string
   const char* e = t.data() + t.size();
   if (b != e && *b == '+') ++b;
   const auto [p, ec] = std::from_chars(b, e, x);
+  if (!t.empty() && ec == std::errc::result_out_of_range && p == e)
+    throw InputError(fmt::format("{} = '{}': '{}' is out of range: beyond the range of a double (about 1e-308 to 1e308 in "
+                                 "magnitude)", option, whole, t));
   if (t.empty() || ec != std::errc() || p != e || !std::isfinite(x)) {
     throw InputError(fmt::format("{} = '{}': '{}' is not a finite number; valid: a list such as 1,2,3, a range "
                                  "first:last:step or first:last:xFACTOR", option, whole, t));

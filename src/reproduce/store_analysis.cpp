@@ -121,6 +121,7 @@ nlohmann::json e_c1_json(const analysis::E_c1Estimate& x) {
 }
 
 std::string power_of_ten_text(double k) {
+  if (!(k > 0) || !std::isfinite(k)) return fmt::format("{:g}", k);
   const double p = std::round(std::log10(k));
   return std::abs(k - std::pow(10.0, p)) <= 1e-9 * k ? fmt::format("1e{:g}", p) : fmt::format("{:g}", k);
 }
@@ -350,9 +351,31 @@ std::string analysis_text(const StoreAnalysis& a) {
   return out;
 }
 
+namespace {
+
+// The file name, without extension, of one (engine, N, T0)'s panels; plots/ncoll_panels.py takes it
+// from the JSON ("stem").
+std::string panel_stem(const std::string& prefix, const nlohmann::json& family) {
+  return fmt::format("{}_N{}_T0{:g}_{}", prefix, family.at("N").get<int>(), family.at("T0").get<double>(),
+                     family.at("engine").get<std::string>());
+}
+
+}  // namespace
+
+std::vector<std::string> ncoll_panel_files(const StoreAnalysis& a, const std::string& prefix) {
+  std::vector<std::string> files = {prefix + ".json"};
+  for (const auto& f : a.json.at("families")) {
+    files.push_back(panel_stem(prefix, f) + ".png");
+    files.push_back(panel_stem(prefix, f) + ".pdf");
+  }
+  return files;
+}
+
 std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option) {
+  nlohmann::json j = a.json;
+  for (auto& f : j.at("families")) f["stem"] = panel_stem(prefix, f);
   try {
-    write_file_atomically(prefix + ".json", a.json.dump(1) + "\n", option);
+    write_file_atomically(prefix + ".json", j.dump(1) + "\n", option);
   } catch (const std::exception& e) {
     return e.what();
   }

@@ -51,5 +51,7 @@ std::string analysis_text(const StoreAnalysis& a);
 // Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>.png/.pdf; "" or what went wrong.
 // `option` names the flag that chose the prefix, for messages.
 std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option = "--plot");
+// Every file draw_ncoll_panels writes: PREFIX.json, then each panel's PNG and PDF.
+std::vector<std::string> ncoll_panel_files(const StoreAnalysis& a, const std::string& prefix);
 
 }  // namespace granchain

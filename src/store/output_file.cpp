@@ -49,6 +49,9 @@ bool same_file(const std::string& a, const std::string& b) {
 }
 
 void check_output_file(const std::string& path, const std::string& option, const std::vector<NamedPath>& inputs) {
+  if (path.empty()) throw InputError(fmt::format("{}: the file name is empty; name a file", option));
+  if (is_standard_output(path))
+    throw InputError(fmt::format("{}: '-' (standard output) is not possible for this output; name a file", option));
   for (const NamedPath& in : inputs)
     if (!in.path.empty() && !is_standard_output(in.path) && same_file(path, in.path))
       throw InputError(fmt::format("{}: '{}' is the same file as {} '{}'; writing it would destroy that; choose another file",
@@ -60,6 +63,15 @@ void check_output_file(const std::string& path, const std::string& option, const
   }
   const std::string reason = cannot_create_file_reason(path);
   if (!reason.empty()) throw InputError(option + ": " + reason);
+}
+
+void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
+  std::vector<NamedPath> others = inputs;
+  for (const NamedPath& out : outputs) {
+    if (out.path.empty()) continue;
+    check_output_file(out.path, out.option, others);
+    others.push_back(out);
+  }
 }
 
 PendingFile::PendingFile(std::string path, std::string text, std::string option)

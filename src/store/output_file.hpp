@@ -20,7 +20,12 @@ bool same_file(const std::string& a, const std::string& b);
 
 // Before anything runs: throws InputError "<option>: <why>" if path cannot be created, or if it is
 // the same file as one of `inputs` (a results store, a config file, another output).
+// "-" (standard output) is refused here: a caller that can write to standard output handles it first.
 void check_output_file(const std::string& path, const std::string& option = "--json", const std::vector<NamedPath>& inputs = {});
+
+// Every output of a command against every input and every other output (check_output_file for
+// each, in order), before anything is written. Empty paths are skipped.
+void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
 
 // A file written whole or not at all. The constructor writes the text to a temporary file beside
 // the target (every write, the flush to disk and the close checked) and throws on failure;

@@ -70,3 +70,16 @@ def test_elastic_column_profiles():
     # T0/W_j, W_j = m g (N - j + 1) the weight of the particles above it.
     gaps = np.diff(np.concatenate([[0.5], col["z_mean"]])) - np.r_[0, np.ones(24)]
     assert np.allclose(gaps, 1 / np.arange(25, 0, -1), rtol=1e-3)
+
+
+@pytest.mark.parametrize("N", [3.9, 2.5, np.int64(2**32 + 3), 2**40, True, float("nan")])
+def test_particle_numbers_are_whole_and_in_range_never_truncated_or_wrapped(N):
+    with pytest.raises(ValueError, match="N = "):
+        granchain.ec_free(N)
+    with pytest.raises(ValueError, match="N = "):
+        granchain.ec_wall_icw(N)
+
+
+def test_particle_numbers_written_as_python_users_write_them():
+    assert granchain.ec_free(3.0) == granchain.ec_free(3) == granchain.ec_free(np.int64(3)) == granchain.ec3()
+    assert list(granchain.ec_free(np.array([3, 4]))) == [granchain.ec_free(3), granchain.ec_free(4)]
