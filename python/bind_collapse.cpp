@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "config/input_error.hpp"
+#include "config/value_list.hpp"
 #include "config/run_options.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
@@ -33,17 +34,6 @@ double real_arg(const std::string& name, const py::object& v) {
   return x;
 }
 
-long long integer_arg(const std::string& name, const py::object& v) {
-  const std::string t = flag_text(v);
-  long long x = 0;
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}' is out of range of a 64-bit integer", name, t));
-  if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}' is not an integer", name, t));
-  return x;
-}
-
 std::string text_arg(const std::string& name, const py::object& v) {
   if (!PyUnicode_Check(v.ptr())) throw InputError(fmt::format("--{} = {} is not a name", name, std::string(py::repr(v))));
   return v.cast<std::string>();
@@ -61,11 +51,14 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   CollapseRequest q;
   CollapseSpec& s = q.spec;
   auto real = [&](const char* name, double dflt) { auto v = take(args, name); return v ? real_arg(name, *v) : dflt; };
-  auto integer = [&](const char* name, long long dflt) { auto v = take(args, name); return v ? integer_arg(name, *v) : dflt; };
+  // Integers as the CLI reads them (config/value_list.hpp): decimal, whole, in range, the same message.
+  auto integer = [&](const char* name, long long dflt, long long lo, long long hi) {
+    auto v = take(args, name);
+    return v ? parse_integer_in(flag_text(*v), std::string("--") + name, lo, hi) : dflt;
+  };
   auto text = [&](const char* name, const char* dflt) { auto v = take(args, name); return v ? text_arg(name, *v) : std::string(dflt); };
 
-  const long long N = integer("N", 3);
-  if (N < 2 || N > 100000) throw InputError(fmt::format("--N = {} is out of range; valid range: integer 2 <= N <= 100000", N));
+  const long long N = integer("N", 3, 2, 100000);
   const double e = real("e", 0.03);
   if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
   const std::string engine = text("engine", "exact");
@@ -97,23 +90,15 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
   if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0);
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
-  const long long realizations = integer("realizations", 1000);
-  if (realizations < 1 || realizations > 10000000)
-    throw InputError(fmt::format("--realizations = {} is out of range; valid range: integer 1 <= R <= 10000000", realizations));
-  const long long seed = integer("seed", 1);
-  if (seed < 0) throw InputError(fmt::format("--seed = {} is out of range; valid range: integer 0 <= seed <= 9223372036854775807", seed));
-  const bool threads_given = args.count("threads") > 0;
-  long long threads = integer("threads", 0);
-  if (!threads_given) threads = static_cast<long long>(std::max(1u, std::thread::hardware_concurrency()));
-  if (threads < 1 || threads > 1024) throw InputError(fmt::format("--threads = {} is out of range; valid range: 1 <= threads <= 1024", threads));
+  const long long realizations = integer("realizations", 1000, 1, 10000000);
+  const long long seed = integer("seed", 1, 0, 9223372036854775807LL);
+  const long long threads = integer("threads", std::max(1u, std::thread::hardware_concurrency()), 1, 1024);
   const double dt_factor = real("dt-factor", 100.0);
   if (!(dt_factor >= 10 && dt_factor <= 1e6))
     throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", dt_factor));
   const double tc = tc_arg ? real_arg("tc", *tc_arg) : 0.0;
   if (!(tc >= 0 && std::isfinite(tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", tc));
-  const long long cc = integer("collapse-collisions", 1000);
-  if (cc < 2 || cc > 1000000000)
-    throw InputError(fmt::format("--collapse-collisions = {} is out of range; valid range: 2 <= n <= 1e9", cc));
+  const long long cc = integer("collapse-collisions", 1000, 2, 1000000000);
   const double ct = real("collapse-time", 1e-9);
   if (!(ct > 0 && std::isfinite(ct))) throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", ct));
   if (auto db = take(args, "db")) {

@@ -88,9 +88,9 @@ void bind_theory(py::module_& m) {
         "Large-N form of the ICW e_c^wall, Eq. (ec_icw_wall): 1 - pi/N; N >= 1.");
   m.def("cushion_Nc_wall", py::vectorize(&cushion_Nc_wall), py::arg("e"),
         "Cushion model: the least N that collapses on a wall at e, ln(4/(1-e))/(1-e); 0 <= e < 1.");
-  m.def("ec_wall_cushion", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_cushion(n); }, "ec_wall_cushion", N); }, py::arg("N"),
+  m.def("ec_wall_cushion", py::vectorize(&ec_wall_cushion), py::arg("N"),
         "Cushion model's e_c^wall(N), the inverse of cushion_Nc_wall; N >= 2.");
-  m.def("ec_wall_cushion_asymptotic", [](const py::object& N) { return of_particle_number([](double n) { return ec_wall_cushion_asymptotic(n); }, "ec_wall_cushion_asymptotic", N); }, py::arg("N"),
+  m.def("ec_wall_cushion_asymptotic", py::vectorize(&ec_wall_cushion_asymptotic), py::arg("N"),
         "Large-N form of the cushion e_c^wall, Eq. (ec_cushion); N >= 1.");
   m.def("ec3", &ec3, "e_c(3) = 7 - 4 sqrt(3) (McNamara & Young).");
   m.def("ec_free", [](const py::object& N) { return of_particle_number([](double n) { return ec_free(static_cast<int>(n)); }, "ec_free", N); }, py::arg("N"),

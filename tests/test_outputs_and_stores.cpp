@@ -61,7 +61,7 @@ TEST_F(OutputsAndStores, AStoreHeldLockedIsWaitedFor) {
     sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
   });
   const auto t0 = std::chrono::steady_clock::now();
-  const CliResult r = run("run --N 3 --T 5 --db s.db -q");
+  const CliResult r = run("run --N 3 --T 5 --seed 2 --db s.db -q");
   const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   release.join();
   sqlite3_close(db);
@@ -159,7 +159,7 @@ TEST_F(OutputsAndStores, StandardOutputThatCannotBeWrittenIsExitFour) {
     EXPECT_NE(r.err.find("cannot write standard output: No space left on device"), std::string::npos) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
   }
-  const CliResult j = to_full("run --N 3 --T 5 --db s.db --json");
+  const CliResult j = to_full("run --N 3 --T 5 --seed 2 --db s.db --json");
   EXPECT_EQ(j.exit_code, 4) << j.err;
   EXPECT_NE(j.err.find("the run is stored (run 2 in s.db)"), std::string::npos) << j.err;
   struct stat st {};

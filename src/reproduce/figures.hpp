@@ -125,9 +125,11 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o);    // fig7 (l
 FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o);  // fig8 (partial_cond)
 FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o);          // fig9 (powerexpo)
 FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o);   // fig10 (ntot)
+std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o);  // the counts fig10 reads
 FigureOutcome reproduce_table1(const ReproduceFlags& o);              // table1
 // Beyond the paper (group `beyond`): the k -> infinity limit and the collision sequences.
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o);  // limit-free
+std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o);  // the counts limit-free reads
 FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o);      // limit-driven
 FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o);   // intervals
 

@@ -15,17 +15,34 @@
 
 namespace granchain {
 
-FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
-  struct Series {
-    int N;
-    double e;
-    std::string k;
-    int realizations;
-  };
+namespace {
+
+struct Series {
+  int N;
+  double e;
+  std::string k;
+  int realizations;
+};
+
+// The counts of Fig. ntot: N = 3 below e_c(3) and N = 25.
+std::vector<Series> fig10_series(const ReproduceFlags& o) {
   const std::string k25 = o.paper() ? "1e4:1e10:x10" : o.smoke() ? "1e4:1e5:x10" : "1e4:1e7:x10";
   const std::string k3 = o.smoke() ? "1e4:1e8:x100" : "1e4:1e14:x100";
   const int launches3 = o.smoke() ? 100 : 1000, launches25 = o.smoke() ? 20 : 200;
-  const std::vector<Series> series = {{3, 0.01, k3, launches3}, {3, 0.03, k3, launches3}, {3, 0.05, k3, launches3}, {25, 0.3, k25, launches25}, {25, 0.5, k25, launches25}};
+  return {{3, 0.01, k3, launches3}, {3, 0.03, k3, launches3}, {3, 0.05, k3, launches3}, {25, 0.3, k25, launches25}, {25, 0.5, k25, launches25}};
+}
+
+}  // namespace
+
+std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o) {
+  std::vector<CollapseSpec> specs;
+  for (const Series& s : fig10_series(o))
+    for (double k : parse_value_list(s.k, "--k")) specs.push_back(free_space_spec(s.N, s.e, k, s.realizations, o));
+  return specs;
+}
+
+FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
+  const std::vector<Series> series = fig10_series(o);
   nlohmann::json plot = {{"series", nlohmann::json::array()}};
   std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
   std::string n25 = "| e | k1 → k2 | n_tot(k2) | local α |\n|---|---|---|---|\n";

@@ -114,6 +114,13 @@ std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
 
 }  // namespace
 
+std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o) {
+  std::vector<CollapseSpec> specs;
+  for (const FreeSeries& s : free_series(o))
+    for (double k : parse_value_list(s.k, "--k")) specs.push_back(free_space_spec(s.N, s.e, k, s.launches, o));
+  return specs;
+}
+
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
   const double k_fit = o.smoke() ? 1e4 : 1e5;
   nlohmann::json plot = {{"title", "free-space collapse"}, {"y_label", "n_tot"}, {"series", nlohmann::json::array()}};

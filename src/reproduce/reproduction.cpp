@@ -29,9 +29,10 @@ const std::vector<FigureEntry>& figures() {
       {"fig7", "logfitbX", reproduce_scaling_collapse, across_n_grid},
       {"fig8", "partial_cond", reproduce_partial_condensation, partial_condensation_grid},
       {"fig9", "powerexpo", reproduce_alpha_vs_n, across_n_grid},
-      {"fig10", "ntot", reproduce_free_space_counts, nullptr},
+      {"fig10", "ntot", reproduce_free_space_counts, nullptr, "all", free_space_count_specs},
       {"table1", "table1", reproduce_table1, table1_grid},
-      {"limit-free", "beyond: free-space n_tot as k -> infinity", reproduce_free_space_exponents, nullptr, "beyond"},
+      {"limit-free", "beyond: free-space n_tot as k -> infinity", reproduce_free_space_exponents, nullptr, "beyond",
+       free_space_exponent_specs},
       {"limit-driven", "beyond: driven n_coll as k -> infinity", reproduce_driven_exponents, driven_limit_grid, "beyond"},
       {"intervals", "beyond: collision-interval sequences", reproduce_collision_intervals, nullptr, "beyond"},
   };
@@ -121,7 +122,46 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
 }
 
 
+namespace {
+
+// With --time-limit, every run and count the chosen figures need is computed before any figure is
+// drawn, so that the limit is spent on computing only: a repeat after exit 75 always stores what
+// the last one could not, never redraws finished figures in the time it needs. Returns kExitOk when
+// everything is stored, kExitTimeLimit when the limit came first.
+int compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+  try {
+    for (const FigureEntry* f : chosen)
+      if (f->grid) {
+        ReproduceFlags fo = o;
+        fo.figure = f->name;
+        run_missing_points(grid_points(f->grid(fo)), fo, f->name);
+      }
+    for (const FigureEntry* f : chosen)
+      if (f->counts) {
+        ReproduceFlags fo = o;
+        fo.figure = f->name;
+        for (const CollapseSpec& spec : f->counts(fo)) stored_or_run_collapse(spec, fo, f->name);
+      }
+  } catch (const TimeLimitReached& e) {
+    fmt::print(stderr, "granchain: --time-limit: {}; every finished run is stored, no figure was drawn; repeat the command "
+                       "to resume\n", e.what());
+    fmt::print("runs:   {}\n", o.db);
+    return kExitTimeLimit;
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}; repeat the command to resume\n", e.what());
+    return kExitStoreFailed;
+  } catch (const UnphysicalStateError& e) {
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}\n", e.what());
+    return kExitUnphysical;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
 int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+  if (o.time_limit > 0 && !o.stored_only)
+    if (const int code = compute_within_time_limit(chosen, o); code != kExitOk) return code;
   int code = kExitOk;
   std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
       "| figure | label | result | wall time | its runs' CPU time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);

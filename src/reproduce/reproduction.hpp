@@ -14,6 +14,7 @@ struct FigureEntry {
   FigureOutcome (*run)(const ReproduceFlags&);
   std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
   const char* group = "all";  // all: the paper's figures; beyond: past the paper (the k -> infinity limit)
+  std::vector<CollapseSpec> (*counts)(const ReproduceFlags&) = nullptr;  // its free-space counts, or null
 };
 
 // fig1 ... fig10 and table1 in the paper's order, then the group beyond (limit-free, limit-driven,
