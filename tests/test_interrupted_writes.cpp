@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -140,4 +141,59 @@ TEST_F(InterruptedWrites, SweepsAndMergesKilledAtRandomMomentsResume) {
   }
   ASSERT_EQ(run("merge --into t.db s.db").exit_code, 0);
   EXPECT_EQ(count_runs(dir_ / "t.db"), 123);
+}
+
+// SIGTERM ends analyze --plot and merge with one line saying what was kept, and leaves no
+// unfinished file (the plot script, ended with granchain, removes its own).
+TEST_F(InterruptedWrites, InterruptedAnalyzeAndMergeSayWhatWasKept) {
+  ASSERT_EQ(run("sweep --N 3 --e 0.5 --k 1e4,1e5,1e6 --T 20 --db s.db -q").exit_code, 0);
+  const auto files_before = files();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' analyze --db s.db --plot q -q 2> log.txt";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Once the plot script runs (a child that is python3), SIGTERM.
+  const std::string children = "/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) + "/children";
+  pid_t child = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (child == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::ifstream f(children);
+    if (!(f >> child) || slurp("/proc/" + std::to_string(child) + "/cmdline").find("python3") == std::string::npos) child = 0;
+    if (child == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_NE(child, 0) << "no plot script was started: " << slurp(dir_ / "log.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // into matplotlib's work
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_NE(slurp(dir_ / "log.txt").find("interrupted by SIGTERM; the figures were not all drawn"), std::string::npos)
+      << slurp(dir_ / "log.txt");
+  for (int i = 0; i < 100 && fs::exists("/proc/" + std::to_string(child) + "/cmdline"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // the script ends on its parent's death
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path() << " was left behind";
+  EXPECT_GE(files(), files_before);
+
+  // A merge waiting for a target that another process holds locked, ended by SIGTERM.
+  ASSERT_EQ(run("run --N 3 --T 5 --seed 9 --db t.db -q").exit_code, 0);
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "t.db").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
+  const pid_t merge = fork();
+  if (merge == 0) {
+    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' merge --into t.db s.db 2> merge.txt";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  ASSERT_EQ(kill(merge, SIGTERM), 0);
+  waitpid(merge, &status, 0);
+  sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_NE(slurp(dir_ / "merge.txt").find("interrupted by SIGTERM; nothing was merged"), std::string::npos) << slurp(dir_ / "merge.txt");
+  EXPECT_EQ(count_runs(dir_ / "t.db"), 1);
 }

@@ -144,7 +144,7 @@ const std::vector<Definition>& definitions() {
                            [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.d = x; }));
     d.push_back(real_param("g", "gravitational acceleration", "g > 0", "1",
                            [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.g = x; }));
-    d.push_back(real_param("sample-interval", "time between profile samples (rounded to whole engine steps)", "sample-interval > 0", "0.01",
+    d.push_back(real_param("sample-interval", "time between profile samples (rounded to whole engine steps); 16 to 1e10 samples in T, at least 1e6 clock resolutions", "sample-interval > 0", "0.01",
                            [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.sample_interval = x; }));
     d.push_back({{"bins", "time bins for the blocking error analysis; power of two, 16 <= bins <= 65536; default 1024", "INT"},
                  [](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
