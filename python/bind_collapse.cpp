@@ -90,7 +90,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
   if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0);
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
-  const long long realizations = integer("realizations", 1000, 1, 10000000);
+  const long long realizations = integer("realizations", 1000, 2, 10000000);
   const long long seed = integer("seed", 1, 0, 9223372036854775807LL);
   const long long threads = integer("threads", std::max(1u, std::thread::hardware_concurrency()), 1, 1024);
   const double dt_factor = real("dt-factor", 100.0);
@@ -109,7 +109,11 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
       throw py::value_error(err.what());
     }
   }
-  if (auto rec = take(args, "record-collisions")) q.record = py::bool_(*rec);
+  if (auto rec = take(args, "record-collisions")) {
+    if (!rec->is_none() && !PyBool_Check(rec->ptr()))
+      throw InputError(fmt::format("record_collisions = {} is not True or False", std::string(py::repr(*rec))));
+    q.record = !rec->is_none() && rec->cast<bool>();
+  }
   if (!args.empty()) {
     throw InputError(fmt::format("unknown parameter '{}'; known: N, e, k, engine, setup, a, v0, dv0, stop, realizations, seed, "
                                  "threads, dt_factor, tc, collapse_collisions, collapse_time, db, record_collisions",

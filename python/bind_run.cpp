@@ -152,7 +152,9 @@ py::dict run(const py::kwargs& kwargs) {
   if (db) raw["db"] = RawValue{path_text(*db, "--db"), ""};
   RunOptions opts = resolve_run_options(raw);  // InputError -> ValueError, the CLI's message
   opts.use_db = db.has_value();
-  if (audit && py::bool_(*audit)) {
+  if (audit && !audit->is_none() && !PyBool_Check(audit->ptr()))
+    throw InputError(fmt::format("--audit: audit = {} is not True or False", std::string(py::repr(*audit))));
+  if (audit && !audit->is_none() && audit->cast<bool>()) {
     if (opts.spec.engine.name != "exact")
       throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
     opts.spec.engine.audit = true;

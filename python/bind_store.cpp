@@ -1,6 +1,8 @@
 // Reading a results store: the text of store/store_export.hpp's export_results (read-only), which
 // the package's store.py turns into numpy arrays, and the CLI's value-list syntax for filters.
 #include <fmt/format.h>
+
+#include <cmath>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -57,7 +59,8 @@ std::string export_text(const py::object& db, const std::string& table, const st
 std::string analyze_text(const py::object& db, const std::map<std::string, std::vector<double>>& values,
                          const std::vector<std::string>& engines, double k_min) {
   const std::string path = path_text(db, "--db");
-  if (!(k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", k_min));
+  if (!(k_min >= 0 && std::isfinite(k_min)))
+    throw InputError(fmt::format("--k-min = {} is out of range; valid range: finite k-min >= 0", k_min));
   ExportSelection sel;
   for (const auto& [name, list] : values) {
     if (name != "N" && name != "T0") throw InputError(fmt::format("unknown filter '{}'; valid: N, T0", name));

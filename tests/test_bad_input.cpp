@@ -157,6 +157,22 @@ const std::vector<BadInputRow> kRows = {
     {"run --N 5 --T 0.1", 2, {"--T = 0.1 is out of range", "16 sample-intervals <= T"}, kAll},
     {"run --engine hard --N 5 --T 1e5 --transient 1e9 --sample-interval 1e-3", 2, {"--sample-interval = 1e-3 is out of range", "clock's resolution"}, kAll},
 
+    // Limits that keep every run finite: the clock, the histograms' memory, the progress period,
+    // trace's window against its clock, an error bar for every count.
+    {"run --N 100000 --T 1", 2, {"--N = 100000 is out of range", "N <= 43690 at bins = 1024", "1 GiB"}, kAll},
+    {"run --engine hard --N 3 --T 1 --transient 1e16", 2, {"--transient = 1e16 is out of range", "transient + T <= 1e15"}, kAll},
+    {"trace --N 3 --from 1e10 --to 1.0000001e10 --dt 1e-9", 2, {"--dt = 1e-09 is out of range", "clock's resolution"}, kAll},
+    {"trace --N 3 --setup free --v0 inf --to 1", 2, {"--a, --v0, --dv0"}, kAll},
+    {"sweep --progress-every 1e300 --T 1 --dry-run", 2, {"--progress-every", "0.1 <= seconds <= 86400"}, kAll},
+    {"collapse --realizations 1 --no-db", 2, {"--realizations = '1'", "2 <= realizations"}, kAll},
+    {"analyze --db store.db --k-min inf", 2, {"--k-min = inf is out of range", "finite"}, kAll},
+    {"export --db empty.toml", 2, {"--db: 'empty.toml' is empty"}, kAll},
+    {"merge --into m.db empty.toml", 2, {"merge source: 'empty.toml' is empty"}, kAll},
+    // CLI11's words in granchain's: the flag and the value as given.
+    {"collapse --a abc --no-db", 2, {"--a = 'abc' is not a number"}, kAll},
+    {"collapse --N 3 --N 4 --no-db", 2, {"--N is given more than once"}, kAll},
+    {"merge --into m.db", 2, {"merge: name at least one source store"}, kAll},
+
     // A command that is not one: the list of commands.
     {"nosuch", 2, {"'nosuch' is not a command; commands: run, theory"}, kAll},
     {"", 2, {"name a command first; commands: run"}, kAll},

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cmath>
+
 #include "cli/interrupt_message.hpp"
 #include "config/input_error.hpp"
 #include "provenance.hpp"
@@ -63,7 +65,8 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
     if (!o.N.empty()) sel.values["N"] = parse_value_list(o.N, "--N");
     if (!o.T0.empty()) sel.values["T0"] = parse_value_list(o.T0, "--T0");
     if (!o.engine.empty()) sel.engines = {o.engine};
-    if (!(o.k_min >= 0)) throw InputError(fmt::format("--k-min = {} is out of range; valid range: k-min >= 0", o.k_min));
+    if (!(o.k_min >= 0 && std::isfinite(o.k_min)))
+      throw InputError(fmt::format("--k-min = {} is out of range; valid range: finite k-min >= 0", o.k_min));
     if (json_requested && !json_stdout) check_output_file(o.json_path, "--json", {{"--db", o.db}});
     if (!o.plot_prefix.empty())
       check_output_file(o.plot_prefix + ".json", "--plot", {{"--db", o.db}, {"--json", json_stdout ? "" : o.json_path}});

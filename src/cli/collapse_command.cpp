@@ -78,7 +78,7 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_->add_option("--v0", o.v0, "launch speed (inward in free space, toward the wall); v0 > 0; default 1");
   sub_->add_option("--dv0", o.dv0, "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1); dv0 >= 0; default 0.1");
   sub_->add_option("--stop", o.stop, "ends (the paper's, free space only; default there) or strict (default on a wall)");
-  sub_->add_option("--realizations", o.realizations_text, "random launches per (e, k); integer 1 <= R <= 10000000; default 1000");
+  sub_->add_option("--realizations", o.realizations_text, "random launches per (e, k); integer 2 <= R <= 10000000 (two for an error bar); default 1000");
   sub_->add_option("--seed", o.seed_text, "base seed; launch r uses derive_seed(seed, r), the same at every e and k; "
                                      "integer 0 <= seed <= 9223372036854775807; default 1");
   o.threads_option = sub_->add_option("--threads", o.threads_text, "threads over realisations; 1 <= threads <= 1024; default all cores "
@@ -137,7 +137,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   CollapseSpec base;
   try {
     o.N = static_cast<int>(parse_integer_in(o.N_text, "--N", 2, 100000));
-    o.realizations = parse_integer_in(o.realizations_text, "--realizations", 1, 10000000);
+    o.realizations = parse_integer_in(o.realizations_text, "--realizations", 2, 10000000);
     o.seed = parse_integer_in(o.seed_text, "--seed", 0, 9223372036854775807LL);
     o.threads = o.threads_option->count() == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
                                                            : static_cast<int>(parse_integer_in(o.threads_text, "--threads", 1, 1024));
@@ -346,15 +346,20 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
 
   std::string stored;
   if (!o.no_db) {
+    announce_on_interrupt(fmt::format("the counts were being stored into {}: each is stored whole or not at all, those "
+                                      "stored are kept (a repeat stores each count once); nothing else was written",
+                                      o.db_path),
+                          events_tmp);
+    std::vector<std::int64_t> ids;
     try {
       ResultsStore store(o.db_path);
-      std::vector<std::int64_t> ids;
       for (const CollapseResult& r : results) ids.push_back(store.insert_collapse(r));
       j["stored"] = {{"db", o.db_path}, {"collapse_run_ids", ids}};
       stored = fmt::format("{} rows in {} (table collapse_runs)", ids.size(), o.db_path);
     } catch (const StoreError& e) {
       remove_tmp();
-      fmt::print(stderr, "granchain: error: {}; the results were not stored\n", e.what());
+      fmt::print(stderr, "granchain: error: {}; {} of {} counts were stored before it, nothing else was written\n", e.what(),
+                 ids.size(), results.size());
       return kExitStoreFailed;
     }
   }

@@ -49,6 +49,23 @@ std::string suggestion(const CLI::App& app, const CLI::App* sub, int argc, char*
   return "";
 }
 
+// CLI11's own words for a value it cannot take, in granchain's: the flag, the value as given, and
+// where its range is written.
+std::string plain_parse_message(const std::string& msg) {
+  const std::string convert = "Could not convert: ";
+  if (msg.rfind(convert, 0) == 0) {
+    const std::string rest = msg.substr(convert.size());  // "--a = abc"
+    const std::size_t eq = rest.find(" = ");
+    if (eq != std::string::npos)
+      return fmt::format("{} = '{}' is not a number of the kind it takes (its valid range is in its help)", rest.substr(0, eq),
+                         rest.substr(eq + 3));
+  }
+  if (const std::size_t at = msg.find(": At Most 1 required but received"); at != std::string::npos)
+    return fmt::format("{} is given more than once; give it once", msg.substr(0, at));
+  if (msg == "sources is required") return "merge: name at least one source store (granchain merge --into ALL.db SOURCE.db ...)";
+  return msg;
+}
+
 int standard_output_failed() {
   fmt::print(stderr, "granchain: error: cannot write standard output: {}; what it should have shown is incomplete\n",
              std::strerror(errno ? errno : EIO));
@@ -84,6 +101,7 @@ int main(int argc, char** argv) {
     std::replace(msg.begin(), msg.end(), '\n', ' ');
     const auto* c = selected();
     const std::string hint = suggestion(app, c ? c->app : nullptr, argc, argv);
+    if (hint.empty()) msg = plain_parse_message(msg);
     fmt::print(stderr, "granchain: error: {} (see granchain {}--help)\n", hint.empty() ? msg : hint, c ? c->app->get_name() + " " : "");
     return granchain::kExitBadInput;
   }

@@ -48,6 +48,9 @@ int execute_merge(const std::shared_ptr<MergeFlags>& impl_) {
                  impl_->sources.size(), impl_->sources.size() == 1 ? "" : "s", impl_->into, r.runs_added,
                  r.runs_already_there, r.collapse_added, r.collapse_already_there);
     return kExitOk;
+  } catch (const MergeWriteError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
   } catch (const StoreError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;

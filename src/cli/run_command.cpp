@@ -144,6 +144,7 @@ int report_stored_run(const RunFlags& impl, const RunOptions& opts, const Result
 }
 
 int execute_run(const std::shared_ptr<RunFlags>& impl_) {
+  announce_on_interrupt("nothing was run, stored or written");  // also while waiting for a busy store
   auto& impl = *impl_;
   RunOptions opts;
   const bool json_requested = impl.json_option->count() > 0;

@@ -118,7 +118,7 @@ Subcommand add_sweep_command(CLI::App& app) {
   sub_->add_flag("--quiet,-q", impl.quiet, "print no table of results, no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines, "print progress on standard error even with --quiet");
   sub_->add_option("--progress-every", impl.progress_every,
-                   "seconds between progress reports; > 0; default 0.5 on a terminal, 10 otherwise")
+                   "seconds between progress reports; 0.1 <= seconds <= 86400; default 0.5 on a terminal, 10 otherwise")
       ->type_name("SECONDS");
   return {sub_, [impl_, sub_] { return execute_sweep(impl_, sub_); }};
 }
@@ -174,8 +174,9 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     if (given("--threads")) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
     if (given("--shard")) std::tie(shard_i, shard_n) = parse_shard(impl.shard);
     if (given("--time-limit")) time_limit = parse_duration(impl.time_limit, "--time-limit");
-    if (sub_->get_option("--progress-every")->count() > 0 && !(impl.progress_every > 0))
-      throw InputError(fmt::format("--progress-every = {} is out of range; valid range: > 0", impl.progress_every));
+    if (sub_->get_option("--progress-every")->count() > 0 && !(impl.progress_every >= 0.1 && impl.progress_every <= 86400))
+      throw InputError(fmt::format("--progress-every = {} is out of range; valid range: 0.1 <= seconds <= 86400 (a day)",
+                                   impl.progress_every));
     points = build_sweep_points(def);
     if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
     if (!impl.sweep_path.empty()) check_output_file(db_path, "--db", {{"--sweep", impl.sweep_path}});

@@ -81,13 +81,23 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     spec.t_from = o.from;
     spec.t_to = o.to;
     spec.dt = o.dt;
-    if (!(o.from >= 0)) throw InputError(fmt::format("--from = {} is out of range; valid range: from >= 0", o.from));
-    if (!(o.to > o.from)) throw InputError(fmt::format("--to = {} is out of range; valid range: to > from = {}", o.to, o.from));
+    if (!(o.from >= 0 && o.from < 1e15)) throw InputError(fmt::format("--from = {} is out of range; valid range: 0 <= from < 1e15", o.from));
+    if (!(o.to > o.from && o.to <= 1e15))
+      throw InputError(fmt::format("--to = {} is out of range; valid range: from = {} < to <= 1e15", o.to, o.from));
+    // Samples and contacts must be resolved by the clock at --to, as a run's are at transient + T.
+    if (!(o.dt >= 1e6 * (std::nextafter(o.to, 2 * o.to) - o.to)))
+      throw InputError(fmt::format("--dt = {} is out of range; valid range: dt >= {:.3g} at to = {} (1e6 times the clock's "
+                                   "resolution there)", o.dt, 1e6 * (std::nextafter(o.to, 2 * o.to) - o.to), o.to));
+    if (!is_hard_sphere_engine(spec.run.engine.name) &&
+        !(spec.run.params.k <= largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)))
+      throw InputError(fmt::format("--to = {} is out of range at k = {:g}: a contact must last at least 1e6 times the clock's "
+                                   "resolution at to; valid range: k <= {:.3g} there", o.to, spec.run.params.k,
+                                   largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)));
     if (!(o.dt > 0) || (o.to - o.from) / o.dt > 1e7)
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt > 0 with (to - from)/dt <= 1e7", o.dt));
     if (o.realization < 0 || o.realization > 1000000000)
       throw InputError(fmt::format("--realization = {} is out of range; valid range: 0 <= realization <= 1e9", o.realization));
-    if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0))
+    if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0 && std::isfinite(o.v0) && std::isfinite(o.a) && std::isfinite(o.dv0)))
       throw InputError("--a, --v0, --dv0: valid ranges a >= 0, v0 > 0, dv0 >= 0");
     std::string plot_pdf;  // plots/spacetime.py writes the PNG and a PDF beside it
     if (!o.plot_path.empty()) {

@@ -321,6 +321,21 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;
   check_contact_time(o, raw);
   check_height_scale(o, raw);
+  // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
+  if (!(o.spec.transient + o.spec.T <= 1e15))
+    out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",
+                                                                      raw.count("transient") ? o.spec.transient : o.spec.T),
+                 "transient + T <= 1e15 (the clock must still advance by steps of order 1)");
+  // The profile histograms hold (1 + 3N) bins doubles: at most 1 GiB.
+  if (static_cast<double>(1 + 3 * o.spec.params.N) * o.spec.bins * 8.0 > 1073741824.0) {
+    const bool bins_given = raw.count("bins") > 0;
+    const long long n_max = (1073741824LL / (8LL * o.spec.bins) - 1) / 3;
+    out_of_range(bins_given ? "bins" : "N", given_or(raw, bins_given ? "bins" : "N", bins_given ? o.spec.bins : o.spec.params.N),
+                 bins_given ? fmt::format("bins <= {} at N = {} (the profile histograms, (1 + 3N) x bins doubles, take at most 1 GiB)",
+                                          1073741824LL / (8LL * (1 + 3LL * o.spec.params.N)), o.spec.params.N)
+                            : fmt::format("N <= {} at bins = {} (the profile histograms, (1 + 3N) x bins doubles, take at most 1 GiB)",
+                                          n_max, o.spec.bins));
+  }
   // Profiles are sampled every sample-interval over the window T: blocking needs at least 16
   // samples (the least --bins), more than 1e10 would take longer to sample than any run is meant to, and the sample
   // times must be told apart by the clock (1e6 resolutions at transient + T, as contacts are).

@@ -238,6 +238,7 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
           const int step = sqlite3_step(any);
           if (busy(step)) problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
           else if (step == SQLITE_ROW && sqlite3_column_int(any, 0) != 0) problem = "is an SQLite database but not a granchain results store";
+          else if (read_only) problem = "is empty: it holds no results store yet";  // a new store is made only by writers
         }
         sqlite3_finalize(any);
       } else {

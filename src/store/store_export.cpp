@@ -141,7 +141,9 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
     for (int i : shown) obj[rows.column_name(i)] = json_field(rows, i);
     all.push_back(std::move(obj));
   }
-  return all.dump(1) + "\n";
+  // Text that is not UTF-8 (written into the store by another program) is kept, each bad byte as
+  // U+FFFD, rather than failing the whole export.
+  return all.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace granchain

@@ -15,6 +15,12 @@ class MergeConflict : public StoreError {
   using StoreError::StoreError;
 };
 
+// Writing the target failed (a full disk, an I/O error): not bad input; nothing was merged.
+class MergeWriteError : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
 struct MergeReport {
   std::int64_t runs_added = 0;
   std::int64_t runs_already_there = 0;      // identical point already in the target
@@ -25,7 +31,8 @@ struct MergeReport {
 // Copies every run (with its profiles and key) and every collapse count (with its realisations)
 // of the sources into target, which is created if missing. A point present in both with the same
 // results is kept once; with different results the merge throws MergeConflict naming both and
-// the differing numbers. All sources go in one transaction: on any error nothing is written.
+// the differing numbers; a failure to write the target throws MergeWriteError. All sources go in
+// one transaction: on any error nothing is written.
 // Sources are only read.
 MergeReport merge_stores(const std::string& target, const std::vector<std::string>& sources);
 
