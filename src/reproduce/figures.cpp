@@ -1,5 +1,7 @@
 #include "reproduce/figures.hpp"
 
+#include "config/value_list.hpp"
+
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -60,6 +62,13 @@ CollapseSpec free_space_spec(int N, double e, double k, int launches, const Repr
   spec.realizations = launches;
   spec.threads = o.threads;
   return spec;
+}
+
+std::vector<CollapseSpec> count_specs(const std::vector<CountSeries>& series, const ReproduceFlags& o) {
+  std::vector<CollapseSpec> specs;
+  for (const CountSeries& s : series)
+    for (double k : parse_value_list(s.k, "--k")) specs.push_back(free_space_spec(s.N, s.e, k, s.launches, o));
+  return specs;
 }
 
 double ReproduceFlags::time_left() const {

@@ -84,6 +84,15 @@ struct CollapseResult;
 // The free-space launches of Sec. III.D (defaults of granchain collapse: exact engine, a = v0 = 1,
 // dv0 = 0.1, stop rule ends, seed 1) at N, e, k, run on o.threads.
 CollapseSpec free_space_spec(int N, double e, double k, int launches, const ReproduceFlags& o);
+// A series of free-space counts: N, e, the k list (value_list text) and the launches per count.
+struct CountSeries {
+  int N;
+  double e;
+  std::string k;
+  int launches;
+};
+// free_space_spec for every k of every series, in order.
+std::vector<CollapseSpec> count_specs(const std::vector<CountSeries>& series, const ReproduceFlags& o);
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label);
 
 // The analysis (`granchain analyze`) of exactly these points as stored, fits over k >= k_min.

@@ -17,15 +17,8 @@ namespace granchain {
 
 namespace {
 
-struct Series {
-  int N;
-  double e;
-  std::string k;
-  int realizations;
-};
-
 // The counts of Fig. ntot: N = 3 below e_c(3) and N = 25.
-std::vector<Series> fig10_series(const ReproduceFlags& o) {
+std::vector<CountSeries> fig10_series(const ReproduceFlags& o) {
   const std::string k25 = o.paper() ? "1e4:1e10:x10" : o.smoke() ? "1e4:1e5:x10" : "1e4:1e7:x10";
   const std::string k3 = o.smoke() ? "1e4:1e8:x100" : "1e4:1e14:x100";
   const int launches3 = o.smoke() ? 100 : 1000, launches25 = o.smoke() ? 20 : 200;
@@ -34,22 +27,17 @@ std::vector<Series> fig10_series(const ReproduceFlags& o) {
 
 }  // namespace
 
-std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o) {
-  std::vector<CollapseSpec> specs;
-  for (const Series& s : fig10_series(o))
-    for (double k : parse_value_list(s.k, "--k")) specs.push_back(free_space_spec(s.N, s.e, k, s.realizations, o));
-  return specs;
-}
+std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o) { return count_specs(fig10_series(o), o); }
 
 FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
-  const std::vector<Series> series = fig10_series(o);
+  const std::vector<CountSeries> series = fig10_series(o);
   nlohmann::json plot = {{"series", nlohmann::json::array()}};
   std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
   std::string n25 = "| e | k1 → k2 | n_tot(k2) | local α |\n|---|---|---|---|\n";
-  for (const Series& s : series) {
+  for (const CountSeries& s : series) {
     std::vector<CollapseResult> results;
     for (double k : parse_value_list(s.k, "--k")) {
-      results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.realizations, o), o, "fig10"));
+      results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.launches, o), o, "fig10"));
     }
     nlohmann::json js = {{"N", s.N}, {"e", s.e}, {"k", nlohmann::json::array()}, {"n_tot", nlohmann::json::array()},
                          {"error", nlohmann::json::array()}};

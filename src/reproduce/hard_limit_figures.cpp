@@ -95,15 +95,8 @@ std::string trend_text(const std::vector<LocalExponent>& local, nlohmann::json& 
                      plus_minus(t.slope, t.slope_error, 4), t.slope / t.slope_error);
 }
 
-struct FreeSeries {
-  int N;
-  double e;
-  std::string k;
-  int launches;
-};
-
-std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
-  std::vector<FreeSeries> s;
+std::vector<CountSeries> free_series(const ReproduceFlags& o) {
+  std::vector<CountSeries> s;
   for (int N : o.smoke() ? std::vector<int>{10, 25} : std::vector<int>{10, 25, 50})
     for (double e : {0.3, 0.5}) {
       const int launches = o.smoke() ? 10 : o.paper() ? (N == 10 ? 2000 : N == 25 ? 1000 : 200) : (N == 10 ? 400 : N == 25 ? 100 : 40);
@@ -114,12 +107,7 @@ std::vector<FreeSeries> free_series(const ReproduceFlags& o) {
 
 }  // namespace
 
-std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o) {
-  std::vector<CollapseSpec> specs;
-  for (const FreeSeries& s : free_series(o))
-    for (double k : parse_value_list(s.k, "--k")) specs.push_back(free_space_spec(s.N, s.e, k, s.launches, o));
-  return specs;
-}
+std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o) { return count_specs(free_series(o), o); }
 
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
   const double k_fit = o.smoke() ? 1e4 : 1e5;
@@ -130,7 +118,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
                                "the covariance of the counts across k estimated from the launches. Counts are stored in --db (table "
                                "collapse_runs) and reused. Figure: `limit-free.png` (and .pdf).\n",
                                o.preset);
-  for (const FreeSeries& s : free_series(o)) {
+  for (const CountSeries& s : free_series(o)) {
     std::vector<CollapseResult> results;
     for (double k : parse_value_list(s.k, "--k")) {
       results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.launches, o), o, "limit-free"));
