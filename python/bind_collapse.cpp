@@ -88,6 +88,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   const double a = real("a", 1.0), v0 = real("v0", 1.0), dv0 = real("dv0", 0.1);
   if (!(a >= 0 && std::isfinite(a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", a));
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
+  check_collapse_launch(static_cast<int>(N), a, v0, ChainParameters{}.d);
   if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0);
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
   const long long realizations = integer("realizations", 1000, 2, 10000000);
@@ -98,9 +99,13 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
     throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", dt_factor));
   const double tc = tc_arg ? real_arg("tc", *tc_arg) : 0.0;
   if (!(tc >= 0 && std::isfinite(tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", tc));
+  const bool watch_given = args.count("collapse-collisions") > 0 || args.count("collapse-time") > 0;
   const long long cc = integer("collapse-collisions", 1000, 2, 1000000000);
   const double ct = real("collapse-time", 1e-9);
   if (!(ct > 0 && std::isfinite(ct))) throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", ct));
+  check_collapse_tc(tc, ct);
+  if (!hard && watch_given)
+    throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
   if (auto db = take(args, "db")) {
     q.db = path_text(*db, "--db");
     try {

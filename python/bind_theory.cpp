@@ -95,10 +95,10 @@ void bind_theory(py::module_& m) {
   m.def("ec3", &ec3, "e_c(3) = 7 - 4 sqrt(3) (McNamara & Young).");
   m.def("ec_free", [](const py::object& N) { return of_particle_number([](double n) { return ec_free(static_cast<int>(n)); }, "ec_free", N); }, py::arg("N"),
         "Free-space e_c(N) = tan^2(pi/4 (1 - 2/N)) (Sec. III.B); N >= 3, ec_free(3) = ec3().");
-  m.def("m_star", py::vectorize(&m_star), py::arg("e"), "Stable fixed point m* of the three-body map, Eq. (mmdash); 0 < e <= e_c(3).");
-  m.def("m_prime_star", py::vectorize(&m_prime_star), py::arg("e"), "Fixed point m'*, Eq. (mdashm); 0 < e <= e_c(3).");
-  m.def("q_ratio", py::vectorize(&q_ratio), py::arg("e"), "q = (m*/(e m'*))^2, Eq. (def_q); 0 < e <= e_c(3).");
-  m.def("f_shift", py::vectorize(&f_shift), py::arg("e"), "Soft-sphere shift f of Appendix B, Eq. (deltat12ss); 0 < e <= e_c(3).");
+  m.def("m_star", py::vectorize(&m_star), py::arg("e"), "Stable fixed point m* of the three-body map, Eq. (mmdash); 1e-150 <= e <= e_c(3).");
+  m.def("m_prime_star", py::vectorize(&m_prime_star), py::arg("e"), "Fixed point m'*, Eq. (mdashm); 1e-150 <= e <= e_c(3).");
+  m.def("q_ratio", py::vectorize(&q_ratio), py::arg("e"), "q = (m*/(e m'*))^2, Eq. (def_q); 1e-150 <= e <= e_c(3).");
+  m.def("f_shift", py::vectorize(&f_shift), py::arg("e"), "Soft-sphere shift f of Appendix B, Eq. (deltat12ss); 1e-150 <= e <= e_c(3).");
   m.def("ntot_slope_per_ln_k", py::vectorize(&ntot_slope_per_ln_k), py::arg("e"),
         "Slope of n_tot against ln k, Eq. (ntot-log): -1/(2 ln q) (times ln 10 against log10 k); 0 < e < e_c(3).");
   m.def("collisions_slope_per_ln_k", py::vectorize(&collisions_slope_per_ln_k), py::arg("e"),

@@ -168,6 +168,11 @@ const std::vector<BadInputRow> kRows = {
     {"analyze --db store.db --k-min inf", 2, {"--k-min = inf is out of range", "finite"}, kAll},
     {"export --db empty.toml", 2, {"--db: 'empty.toml' is empty"}, kAll},
     {"merge --into m.db empty.toml", 2, {"merge source: 'empty.toml' is empty"}, kAll},
+    {"collapse --engine hard --N 3 --e 0.05 --a 1e8 --no-db", 2, {"--a = 1e+08", "launch's time scale", "<= 1e6"}, kAll},
+    {"collapse --engine hard --N 3 --e 0.05 --tc 1e-30 --no-db", 2, {"--tc = 1e-30 is out of range", "tc >= collapse-time"}, kAll},
+    {"collapse --N 3 --e 0.05 --k 1e4 --collapse-time 1e-6 --no-db", 2, {"the collapse watch belongs to --engine hard"}, kAll},
+    {"run --config float_n.json --no-db", 2, {"--N = '3.0'", "is not an integer"}, kAll},
+    {"export --db store.db --e 0.001:0.999:0.001", 2, {"--e: 999 values in one filter", "at most 500"}, kAll},
     // CLI11's words in granchain's: the flag and the value as given.
     {"collapse --a abc --no-db", 2, {"--a = 'abc' is not a number"}, kAll},
     {"collapse --N 3 --N 4 --no-db", 2, {"--N is given more than once"}, kAll},
@@ -244,6 +249,7 @@ void prepare_folder(const fs::path& dir) {
   write("numbers.toml", "N = 3\nk = 1_000_000  # every TOML number\nT = 1.0\ntransient = 1e-1\n");
   write("bad.json", "{\"N\": 5, \"e\": ");
   write("huge.json", "{\"e\": 1e400}");
+  write("float_n.json", "{\"N\": 3.0, \"T\": 1}");
   write("empty.toml", "");
   write("sweep.toml", "N = 3\n");
   write("big.toml", "N = 3\n" + std::string(std::size_t{1} << 20, '#') + "\n");

@@ -115,3 +115,17 @@ TEST_F(CountedOnce, MergeComparesProfilesToo) {
   EXPECT_NE(r.err.find("profile of particle 2, K:"), std::string::npos) << r.err;
   EXPECT_EQ(count_runs(dir_ / "a.db"), 1);
 }
+
+// Two runs of one point with other seeds but results identical to the last bit are not two
+// samples (zero scatter): the second is named and left out.
+TEST_F(CountedOnce, ZeroScatterIsNotTwoSamples) {
+  ASSERT_EQ(run("sweep --N 3 --e 0.5 --k 1e4,1e5,1e6 --T 50 --replicas 2 --db d.db -q").exit_code, 0);
+  exec(dir_ / "d.db",
+       "UPDATE runs SET n_coll = (SELECT n_coll FROM runs r2 WHERE r2.k = runs.k ORDER BY id LIMIT 1), "
+       "n_coll_err = (SELECT n_coll_err FROM runs r2 WHERE r2.k = runs.k ORDER BY id LIMIT 1) WHERE k = 1000000");
+  const auto j = nlohmann::json::parse(run("analyze --db d.db --json").out);
+  ASSERT_EQ(j["excluded"].size(), 1u);
+  EXPECT_EQ(j["excluded"][0]["k"], 1e6);
+  EXPECT_NE(j["excluded"][0]["reason"].get<std::string>().find("zero scatter"), std::string::npos);
+  EXPECT_EQ(j["families"][0]["replica_check"]["points"], 2);  // k = 1e4 and 1e5 keep their two replicas
+}

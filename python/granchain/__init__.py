@@ -75,15 +75,16 @@ run.__doc__ += "".join(f"\n        {p['name'].replace('-', '_')}: {p['help']}"
 
 def collapse(*, N=3, e=0.03, k=None, engine="exact", setup="free", a=1.0, v0=1.0, dv0=0.1,
              stop=None, realizations=1000, seed=1, threads=None, dt_factor=100.0, tc=None,
-             collapse_collisions=1000, collapse_time=1e-9, db=None, record_collisions=False):
+             collapse_collisions=None, collapse_time=None, db=None, record_collisions=False):
     """Count the collisions n_tot of an inelastic collapse at one (e, k), as ``granchain collapse``.
 
     N >= 2 spheres launched inward in free space (setup='free', Sec. III.D) or thrown against a
     wall (setup='wall'); k is required for the soft engines and left out for engine='hard';
     stop: 'ends' (the paper's, free space) or 'strict'; realizations launches, launch r from
     derive_seed(seed, r) (the same launches at every e and k); threads: default all cores (the
-    numbers do not depend on it). db=PATH stores the count; record_collisions=True adds every
-    collision.
+    numbers do not depend on it); collapse_collisions (default 1000) and collapse_time (default
+    1e-9) set the hard engine's collapse watch and are refused for the soft engines. db=PATH stores
+    the count; record_collisions=True adds every collision.
 
     Returns a dict: parameters, D, tau_c, n_tot and n_tot_err (mean and standard error over the
     launches that did not collapse; nan if none finished), n_tot_min, n_tot_max, collapsed (how

@@ -34,6 +34,9 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     const auto [it, fresh] = kept.emplace(r.trajectory, i);
     if (!fresh && r.T > runs[it->second].T) it->second = i;
   }
+  // Results identical to the last bit at one point: not two independent samples, whatever their
+  // seeds say (zero scatter); the first is kept.
+  std::map<std::tuple<std::string, int, double, double, double, double, double>, std::size_t> first_result;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
     std::string why;
@@ -44,6 +47,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     else if (!r.trajectory.empty() && kept.at(r.trajectory) != i)
       why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",
                         runs[kept.at(r.trajectory)].run_id, r.T == runs[kept.at(r.trajectory)].T ? "" : ", a shorter window");
+    else if (const auto [at, fresh] = first_result.emplace(std::make_tuple(r.engine, r.N, r.kT0, r.e, r.k, r.n_coll, r.n_coll_err), i);
+             !fresh)
+      why = fmt::format("n_coll and its error are those of run {} to the last bit (zero scatter): not an independent sample",
+                        runs[at->second].run_id);
     if (!why.empty()) {
       report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why});
       continue;

@@ -52,6 +52,8 @@ struct CollapseFlags {
   CLI::Option* threads_option = nullptr;
   CLI::Option* k_option = nullptr;
   CLI::Option* tc_option = nullptr;
+  CLI::Option* cc_option = nullptr;
+  CLI::Option* ct_option = nullptr;
   bool no_db = false, quiet = false;
 };
 
@@ -86,9 +88,9 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_->add_option("--dt-factor", o.dt_factor, "reference engines: dt = tau_c / dt-factor; 10 <= dt-factor <= 1e6; default 100");
   o.tc_option = sub_->add_option("--tc", o.tc, "hard engine: TC model time t_c (a collision within t_c of a particle's "
                                                "previous one is elastic); tc >= 0; default 0 (off)");
-  sub_->add_option("--collapse-collisions", o.collapse_collisions_text,
+  o.cc_option = sub_->add_option("--collapse-collisions", o.collapse_collisions_text,
                    "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e9; default 1000");
-  sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
+  o.ct_option = sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
   sub_->add_option("--events", o.events_path, "write every collision (e, k, realisation, index, contact begin and end "
                                               "times, pair, speeds in and out) as CSV to FILE")
       ->type_name("FILE");
@@ -161,6 +163,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     if (!(o.a >= 0 && std::isfinite(o.a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", o.a));
     if (!(o.v0 > 0 && std::isfinite(o.v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", o.v0));
     const ChainParameters defaults;
+    check_collapse_launch(o.N, o.a, o.v0, defaults.d);
     if (!hard)
       for (double e : es)
         for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0);
@@ -176,6 +179,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     if (!(o.tc >= 0 && std::isfinite(o.tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", o.tc));
     if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
       throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
+    check_collapse_tc(o.tc, o.collapse_time);
+    if (!hard && (o.cc_option->count() > 0 || o.ct_option->count() > 0))
+      throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
     check_outputs({{"--db", o.no_db ? "" : o.db_path}, {"--events", o.events_path},
                    {"--json", json_requested && !json_stdout ? o.json_path : ""}}, {});
     if (!o.no_db) ResultsStore::preflight(o.db_path);

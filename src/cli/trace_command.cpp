@@ -95,6 +95,10 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
                                    largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)));
     if (!(o.dt > 0) || (o.to - o.from) / o.dt > 1e7)
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt > 0 with (to - from)/dt <= 1e7", o.dt));
+    // The trace holds every height in memory (and in its CSV): at most 1e8 values.
+    if (spec.run.params.N * ((o.to - o.from) / o.dt + 1) > 1e8)
+      throw InputError(fmt::format("--dt = {} is out of range; valid range: dt >= N (to - from) / 1e8 = {:.3g} (at most 1e8 heights "
+                                   "in the trace)", o.dt, spec.run.params.N * (o.to - o.from) / 1e8));
     if (o.realization < 0 || o.realization > 1000000000)
       throw InputError(fmt::format("--realization = {} is out of range; valid range: 0 <= realization <= 1e9", o.realization));
     if (spec.free_space && !(o.v0 > 0 && o.a >= 0 && o.dv0 >= 0 && std::isfinite(o.v0) && std::isfinite(o.a) && std::isfinite(o.dv0)))

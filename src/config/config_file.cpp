@@ -26,6 +26,15 @@ std::string normalize_key(std::string key) {
 
 namespace {
 
+// A file's real number as text that reads back exactly and stays a real: 3.0 is "3.0", so an
+// integer parameter given as a real (N = 3.0, or 2.9999999999999999, which is the same double) is
+// refused as the command line refuses --N 3.0, instead of being taken as 3.
+std::string real_text(double x) {
+  std::string t = fmt::format("{}", x);
+  if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
+  return t;
+}
+
 // Parameter files are a few hundred bytes; anything beyond this is not one.
 constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
 
@@ -67,14 +76,14 @@ std::map<std::string, std::string> parse_json(const std::string& path, const std
         if (!(item.is_string() || item.is_number()))
           throw InputError(fmt::format("{}: '{}': the list '{}' may hold only numbers and strings", option, path, key));
         v += (v.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>()
-                                       : item.is_number_float() ? fmt::format("{:.17g}", item.get<double>()) : item.dump());
+                                       : item.is_number_float() ? real_text(item.get<double>()) : item.dump());
       }
     } else if (value.is_string()) {
       v = value.get<std::string>();
     } else if (value.is_number_integer() || value.is_number_unsigned()) {
       v = value.dump();
     } else if (value.is_number_float()) {
-      v = fmt::format("{:.17g}", value.get<double>());
+      v = real_text(value.get<double>());
     } else if (value.is_boolean()) {
       v = value.get<bool>() ? "true" : "false";
     } else {
@@ -99,7 +108,7 @@ std::map<std::string, std::string> parse_toml(const std::string& path, const std
   std::map<std::string, std::string> out;
   auto scalar = [&](const toml::node& n, const std::string& key) -> std::string {
     if (const auto* i = n.as_integer()) return std::to_string(i->get());
-    if (const auto* f = n.as_floating_point()) return fmt::format("{:.17g}", f->get());
+    if (const auto* f = n.as_floating_point()) return real_text(f->get());
     if (const auto* s = n.as_string()) return s->get();
     if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
     throw InputError(fmt::format("{}: '{}' line {}: the value of '{}' must be a number, a string or a list of them", option, path,

@@ -283,6 +283,20 @@ void check_collapse_contact_time(double k, double e, double m, double d, int N, 
                                  k, rounded(k_max, true), e, N, a, v0, ulp(t), t));
 }
 
+void check_collapse_launch(int N, double a, double v0, double d) {
+  const double t = 2.0 * (N + 1) * (a + d) / v0;
+  if (!(t <= 1e6))
+    throw InputError(fmt::format("--a = {:g}, --v0 = {:g}: the launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g} is out of range; "
+                                 "valid range: <= 1e6 (a launch is given up at t = 1e7)", a, v0, t));
+}
+
+void check_collapse_tc(double tc, double collapse_time) {
+  if (!(tc == 0 || tc >= collapse_time))
+    throw InputError(fmt::format("--tc = {:g} is out of range; valid range: tc = 0 (off) or tc >= collapse-time = {:g}", tc,
+                                 collapse_time));
+}
+
+
 
 const std::vector<ParameterInfo>& run_parameters() {
   static const std::vector<ParameterInfo> infos = [] {

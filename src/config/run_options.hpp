@@ -46,5 +46,11 @@ double largest_resolved_k(double m, double e, double t);
 // (N - 1)(a + d) / 2v0 and (N a + (N - 1) d) / v0, with a factor 2 for the spread of speeds and the
 // rebounds). Throws InputError "--k: ... is out of range" when k exceeds largest_resolved_k there.
 void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0);
+// The launch must play out well inside the count's clock limit (a launch is given up at t = 1e7,
+// simulation/collapse_run.hpp): 2 (N + 1)(a + d) / v0 <= 1e6. Throws InputError naming --a or --v0.
+void check_collapse_launch(int N, double a, double v0, double d);
+// The hard engine's TC time acts on collisions within t_c of one another; the collapse watch
+// spans --collapse-time: t_c = 0 (off) or t_c >= collapse-time. Throws InputError naming --tc.
+void check_collapse_tc(double tc, double collapse_time);
 
 }  // namespace granchain

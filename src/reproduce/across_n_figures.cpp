@@ -135,6 +135,7 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
                   "error; e_c2 (convex by 2 errors / not) likewise with its half-width.";
   out.markdown += "\nThe partially condensed state is flagged where K_i rises above its dip near the floor by more than 3 standard "
                   "errors (docs/analysis.md), in the profiles at the largest k; the paper's shaded region has its upper e near e_c1.\n";
+  out.markdown += excluded_markdown(s.a);
   return out;
 }
 
@@ -173,6 +174,7 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
                              o.preset, pts.size());
   out.markdown += table + "\nThe paper (Eq. b_e_N): b = 1.5 N^(5/2) ((1 − e) − 2.6/N)^2 over its logarithmic ranges "
                           "(0.835 ≤ e ≤ 0.900 for N = 20 … 0.972 ≤ e ≤ 0.979 for N = 150).\n";
+  out.markdown += excluded_markdown(s.a);
   return out;
 }
 
@@ -233,6 +235,7 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
   if (!locals.empty())
     out.markdown += "\nThe line α = p log10 N + q through the local exponents of each interval of k (mean over e = 0.1 … 0.4), "
                     "the paper's p = 0.18, q = −0.054:\n\n| k | N | p | q | χ² / dof |\n|---|---|---|---|---|\n" + locals;
+  out.markdown += excluded_markdown(s.a);
   return out;
 }
 
@@ -296,6 +299,7 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o) {
   }
   if (!locals.empty())
     out.markdown += "\nLocal α per interval of k, mean over e = 0.1 … 0.4 (ᾱ is a fit through these):\n\n" + locals;
+  out.markdown += excluded_markdown(s.a);
   return out;
 }
 

@@ -193,6 +193,7 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
   FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
                     a.run_seconds};
   for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
+  out.markdown += excluded_markdown(a);
   return out;
 }
 

@@ -167,6 +167,7 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
       "\nPartially condensed (K_i rises above its dip by more than 3 standard errors) at e = {}; the paper (k = 1e10): a "
       "dip and an inversion layer for 0.84 ≲ e ≲ 0.90, monotone profiles for e ≳ 0.91.\n",
       condensed.empty() ? "none" : condensed);
+  out.markdown += excluded_markdown(a);
   return out;
 }
 

@@ -262,6 +262,11 @@ std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
   return out;
 }
 
+std::string excluded_markdown(const StoreAnalysis& a) {
+  const std::string text = excluded_text(a.report.excluded);
+  return text.empty() ? "" : "\nRuns the analysis could not use (granchain analyze lists them the same way):\n\n```\n" + text + "```\n";
+}
+
 std::string analysis_text(const StoreAnalysis& a) {
   std::string out;
   out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));

@@ -48,6 +48,10 @@ nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& 
 // Throws StoreError when the store cannot be read.
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
 std::string analysis_text(const StoreAnalysis& a);
+// The runs the analysis left out, grouped by point, each with its reason ("" if none).
+std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded);
+// The same as a report section (Markdown), "" if none.
+std::string excluded_markdown(const StoreAnalysis& a);
 // Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>.png/.pdf; "" or what went wrong.
 // `option` names the flag that chose the prefix, for messages.
 std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option = "--plot");

@@ -86,6 +86,10 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
   std::string where;
   std::vector<double> numbers;
   for (const auto& [column, values] : sel.values) {
+    // Each value is one term of an OR chain, whose depth SQLite bounds (about 1000).
+    if (values.size() > 500)
+      throw StoreError(fmt::format("--{}: {} values in one filter; a filter takes at most 500 (select a range with --where "
+                                   "instead, for example --where '{} BETWEEN 0.8 AND 0.9')", column, values.size(), column));
     std::string any;
     for (double v : values) {
       any += fmt::format("{}abs({} - ?) <= 1e-12 * max(1.0, abs(?))", any.empty() ? "" : " OR ", column);

@@ -14,8 +14,9 @@ void require(bool ok, const char* what) {
 }
 
 void require_three_body(double e) {
-  if (!(e > 0 && e <= ec3())) {
-    throw std::domain_error(fmt::format("e = {} outside the three-body collapse range 0 < e <= e_c(3) = 7 - 4 sqrt 3", e));
+  // Below 1e-150, e^2 and m'* ~ -1/(2e) leave the range of a double.
+  if (!(e >= 1e-150 && e <= ec3())) {
+    throw std::domain_error(fmt::format("e = {} outside the three-body collapse range 1e-150 <= e <= e_c(3) = 7 - 4 sqrt 3", e));
   }
 }
 
@@ -71,7 +72,8 @@ double ec_free(int N) {
 double m_star(double e) {
   require_three_body(e);
   const double b = 0.5 * (1.0 + e);
-  return 0.5 * (-b + std::sqrt(discriminant(e)));
+  // The root of m^2 + b m + e = 0 nearer zero, as e over the other (no cancellation at small e).
+  return 2.0 * e / (-b - std::sqrt(discriminant(e)));
 }
 
 double m_prime_star(double e) {
@@ -80,12 +82,23 @@ double m_prime_star(double e) {
   return (-b - std::sqrt(discriminant(e))) / (2.0 * e);
 }
 
-double q_ratio(double e) {
-  require_three_body(e);
-  // Eq. (def_q) as printed; 1 - 14e + e^2 = 16 (b^2 - 4e) >= 0 on the range.
+namespace {
+
+// ln q of Eq. (def_q), q = (a - r)/(a + r) with a = 1 - 6e + e^2, r = (1 + e) sqrt(1 - 14e + e^2)
+// (1 - 14e + e^2 = 16 (b^2 - 4e) >= 0 on the range). Since a^2 - r^2 = 64 e^2 exactly,
+// q = 64 e^2 / (a + r)^2: no cancellation of a - r at small e, and its logarithm is finite where
+// q itself is below the least double.
+double log_q(double e) {
   const double a = 1.0 - 6.0 * e + e * e;
   const double r = (1.0 + e) * std::sqrt(std::max(0.0, 1.0 - 14.0 * e + e * e));
-  return (a - r) / (a + r);
+  return std::log(64.0) + 2.0 * std::log(e) - 2.0 * std::log(a + r);
+}
+
+}  // namespace
+
+double q_ratio(double e) {
+  require_three_body(e);
+  return std::exp(log_q(e));
 }
 
 double f_shift(double e) {
@@ -95,7 +108,7 @@ double f_shift(double e) {
 
 double ntot_slope_per_ln_k(double e) {
   require(e > 0 && e < ec3(), "ntot_slope_per_ln_k: 0 < e < e_c(3) = 7 - 4 sqrt 3");
-  return -1.0 / (2.0 * std::log(q_ratio(e)));
+  return -1.0 / (2.0 * log_q(e));
 }
 
 double collisions_slope_per_ln_k(double e) { return 2.0 * ntot_slope_per_ln_k(e); }

@@ -83,3 +83,20 @@ def test_particle_numbers_are_whole_and_in_range_never_truncated_or_wrapped(N):
 def test_particle_numbers_written_as_python_users_write_them():
     assert granchain.ec_free(3.0) == granchain.ec_free(3) == granchain.ec_free(np.int64(3)) == pytest.approx(granchain.ec3())
     assert list(granchain.ec_free(np.array([3, 4]))) == [granchain.ec_free(3), granchain.ec_free(4)]
+
+
+def test_three_body_map_at_small_e_has_no_cancellation():
+    # Eq. (def_q) as printed, q = (a - r)/(a + r), evaluated with 500 digits: in doubles a - r
+    # cancels at small e; granchain's q must keep full precision there.
+    import decimal
+    decimal.getcontext().prec = 500
+    for e in [1e-6, 1e-9, 1e-12, 1e-100]:
+        E = decimal.Decimal(e)
+        a = 1 - 6 * E + E * E
+        r = (1 + E) * (1 - 14 * E + E * E).sqrt()
+        assert granchain.q_ratio(e) == pytest.approx(float((a - r) / (a + r)), rel=1e-13)
+        b = (1 + E) / 2
+        assert granchain.m_star(e) == pytest.approx(float((-b + (b * b - 4 * E).sqrt()) / 2), rel=1e-13)
+        assert granchain.ntot_slope_per_ln_k(e) == pytest.approx(-1 / (2 * float(((a - r) / (a + r)).ln())), rel=1e-13)
+    with pytest.raises(ValueError):
+        granchain.q_ratio(1e-200)
