@@ -100,7 +100,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   const double tc = tc_arg ? real_arg("tc", *tc_arg) : 0.0;
   if (!(tc >= 0 && std::isfinite(tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", tc));
   const bool watch_given = args.count("collapse-collisions") > 0 || args.count("collapse-time") > 0;
-  const long long cc = integer("collapse-collisions", 1000, 2, 1000000000);
+  const long long cc = integer("collapse-collisions", 1000, 2, 10000000);
   const double ct = real("collapse-time", 1e-9);
   if (!(ct > 0 && std::isfinite(ct))) throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", ct));
   check_collapse_tc(tc, ct);

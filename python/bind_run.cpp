@@ -176,8 +176,15 @@ py::dict run(const py::kwargs& kwargs) {
       stored = ResultsStore(opts.db_path).find_run(opts.spec);
     }
     if (stored) {
-      nlohmann::json j = nlohmann::json::parse(stored->result_json);
-      const RunResult result = run_result_from_json(j);
+      nlohmann::json j;
+      RunResult result;
+      try {
+        j = nlohmann::json::parse(stored->result_json);
+        result = run_result_from_json(j);
+      } catch (const std::exception& e) {
+        throw StoreError(fmt::format("run {} of {} cannot be read back ({}); nothing was run or written", stored->id,
+                                     opts.db_path, e.what()));
+      }
       j["stored"] = {{"db", opts.db_path}, {"run_id", stored->id}};
       j["reused"] = true;
       if (PyErr_WarnEx(PyExc_UserWarning,

@@ -173,6 +173,9 @@ const std::vector<BadInputRow> kRows = {
     {"collapse --N 3 --e 0.05 --k 1e4 --collapse-time 1e-6 --no-db", 2, {"the collapse watch belongs to --engine hard"}, kAll},
     {"run --config float_n.json --no-db", 2, {"--N = '3.0'", "is not an integer"}, kAll},
     {"export --db store.db --e 0.001:0.999:0.001", 2, {"--e: 999 values in one filter", "at most 500"}, kAll},
+    {"collapse --engine hard --collapse-collisions 1000000000 --no-db", 2, {"--collapse-collisions = '1000000000'", "10000000"}, kAll},
+    {"collapse --e 0.01:0.99:0.01 --k 1e4:1e10:x10 --realizations 10000000 --no-db", 2, {"at most 1e9 launches"}, kAll},
+    {"export --db store.db --where \"json_extract(result_json, '$[') > 0\"", 2, {"--where"}, kAll},
     // CLI11's words in granchain's: the flag and the value as given.
     {"collapse --a abc --no-db", 2, {"--a = 'abc' is not a number"}, kAll},
     {"collapse --N 3 --N 4 --no-db", 2, {"--N is given more than once"}, kAll},

@@ -23,8 +23,13 @@ def _values(value, name):
     if isinstance(value, str):
         return _granchain.parse_value_list(value, "--" + name)
     if isinstance(value, numbers.Real) or np.ndim(value) == 0:
-        return [float(value)]
-    return [float(x) for x in np.asarray(value, dtype=float).ravel()]
+        values = [float(value)]
+    else:
+        values = [float(x) for x in np.asarray(value, dtype=float).ravel()]
+    for x in values:
+        if not np.isfinite(x):
+            raise ValueError("--%s = %r: %r is not a finite number" % (name, value, x))
+    return values
 
 
 def _names(value):

@@ -89,7 +89,7 @@ Subcommand add_collapse_command(CLI::App& app) {
   o.tc_option = sub_->add_option("--tc", o.tc, "hard engine: TC model time t_c (a collision within t_c of a particle's "
                                                "previous one is elastic); tc >= 0; default 0 (off)");
   o.cc_option = sub_->add_option("--collapse-collisions", o.collapse_collisions_text,
-                   "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e9; default 1000");
+                   "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e7 (each launch keeps that many collision times); default 1000");
   o.ct_option = sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
   sub_->add_option("--events", o.events_path, "write every collision (e, k, realisation, index, contact begin and end "
                                               "times, pair, speeds in and out) as CSV to FILE")
@@ -143,7 +143,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     o.seed = parse_integer_in(o.seed_text, "--seed", 0, 9223372036854775807LL);
     o.threads = o.threads_option->count() == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
                                                            : static_cast<int>(parse_integer_in(o.threads_text, "--threads", 1, 1024));
-    o.collapse_collisions = parse_integer_in(o.collapse_collisions_text, "--collapse-collisions", 2, 1000000000);
+    o.collapse_collisions = parse_integer_in(o.collapse_collisions_text, "--collapse-collisions", 2, 10000000);
     es = parse_value_list(o.e, "--e");
     for (double e : es)
       if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
@@ -180,6 +180,11 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
       throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
     check_collapse_tc(o.tc, o.collapse_time);
+    // Every launch's outcome is kept in memory until the table is printed: at most 1e9 launches.
+    if (static_cast<double>(es.size()) * ks.size() * o.realizations > 1e9)
+      throw InputError(fmt::format("--realizations = {}: {} values of e times {} of k times the launches is {:.3g}; valid range: "
+                                   "at most 1e9 launches in one command", o.realizations, es.size(), ks.size(),
+                                   static_cast<double>(es.size()) * ks.size() * o.realizations));
     if (!hard && (o.cc_option->count() > 0 || o.ct_option->count() > 0))
       throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
     check_outputs({{"--db", o.no_db ? "" : o.db_path}, {"--events", o.events_path},

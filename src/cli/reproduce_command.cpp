@@ -44,13 +44,14 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
                                      o.k_min, power_of_ten_text(limit), o.preset));
     }
     if (o.stored_only && o.print_sweeps) throw InputError("--stored-only and --print-sweeps exclude each other: both run nothing, one draws, one prints");
-    if (o.stored_only && !std::filesystem::exists(o.db))
+    std::error_code ec;
+    if (o.stored_only && !std::filesystem::exists(o.db, ec))
       throw InputError(fmt::format("--db: '{}' does not exist; --stored-only draws from the runs of an existing store", o.db));
     ResultsStore::preflight(o.db, o.stored_only ? ResultsStore::Access::ReadOnly : ResultsStore::Access::ReadWrite);
     if (o.time_limit > 0 && !o.print_sweeps && !o.stored_only) {
       // Runs that no invocation with this limit can fit are refused before anything runs.
       std::unordered_set<std::string> stored;
-      if (std::filesystem::exists(o.db)) stored = ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys();
+      if (std::filesystem::exists(o.db, ec)) stored = ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys();
       for (const FigureEntry* f : chosen) {
         if (!f->grid) continue;
         const std::vector<SweepPoint> points = grid_points(f->grid(o));
@@ -59,7 +60,6 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
       }
     }
     if (!o.print_sweeps) {  // --print-sweeps writes nothing into --out
-      std::error_code ec;
       if (std::filesystem::exists(o.out, ec) && !std::filesystem::is_directory(o.out, ec))
         throw InputError(fmt::format("--out: '{}' is a file, not a folder; name a folder for the figures and reports", o.out));
       std::filesystem::create_directories(o.out, ec);

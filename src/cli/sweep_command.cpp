@@ -278,8 +278,14 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   if (code == kExitOk) {
     for (const auto& f : failures) fmt::print(stderr, "granchain: error: point turned unphysical, not stored: {}\n", f);
     if (!failures.empty()) code = kExitUnphysical;
+    std::map<std::string, ResultsStore::PointSummary> summaries;
     if (!impl.quiet) {
-      const auto summaries = store->point_summaries();
+      try {
+        summaries = store->point_summaries();
+      } catch (const StoreError& e) {
+        fmt::print(stderr, "granchain: error: {}; the table of results cannot be shown, every finished point is stored\n", e.what());
+        return world.broadcast(kExitStoreFailed);
+      }
       fmt::print("{:>6} {:>8} {:>10} {:>6} {:>8} {:>10} {:>4} {:>10} {:>9} {:>6}\n", "N", "e", "k", "T0", "T", "engine", "rep",
                  "n_coll", "error", "run");
       std::vector<const SweepPoint*> order;

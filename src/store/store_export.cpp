@@ -71,6 +71,17 @@ nlohmann::ordered_json json_field(SqlStatement& row, int i) {
   }
 }
 
+// The next row; an error while stepping (a --where that fails on some row's values, such as a
+// JSON path) names --where.
+bool next_row(SqlStatement& rows, const ExportSelection& sel) {
+  try {
+    return rows.row();
+  } catch (const StoreError& e) {
+    if (sel.where.empty()) throw;
+    throw StoreError(fmt::format("--where: '{}' failed on the stored rows: {}", sel.where, e.what()));
+  }
+}
+
 }  // namespace
 
 std::string export_results(const std::string& db_path, const ExportSelection& sel, ExportFormat format) {
@@ -133,14 +144,14 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
   if (format == ExportFormat::Csv) {
     for (std::size_t j = 0; j < shown.size(); ++j) out += std::string(j ? "," : "") + rows.column_name(shown[j]);
     out += "\n";
-    while (rows.row()) {
+    while (next_row(rows, sel)) {
       for (std::size_t j = 0; j < shown.size(); ++j) out += (j ? "," : "") + csv_field(rows, shown[j]);
       out += "\n";
     }
     return out;
   }
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
-  while (rows.row()) {
+  while (next_row(rows, sel)) {
     nlohmann::ordered_json obj;
     for (int i : shown) obj[rows.column_name(i)] = json_field(rows, i);
     all.push_back(std::move(obj));
