@@ -169,7 +169,7 @@ py::dict run(const py::kwargs& kwargs) {
 
   // The same rule as `granchain run`: a run whose identity (every parameter and the seed) is
   // stored already is read back with a warning, never run or stored twice.
-  if (opts.use_db && std::filesystem::exists(opts.db_path)) {
+  if (opts.use_db && !opts.spec.engine.audit && std::filesystem::exists(opts.db_path)) {
     std::optional<ResultsStore::StoredRun> stored;
     {
       py::gil_scoped_release nogil;

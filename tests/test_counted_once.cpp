@@ -52,6 +52,10 @@ TEST_F(CountedOnce, ARepeatedRunIsReadBackNotStoredTwice) {
   EXPECT_EQ(b["reused"], true);
   const CliResult summary = run("run --N 3 --e 0.5 --k 1e5 --T 20 --db d.db");
   EXPECT_NE(summary.out.find("stored before and read back"), std::string::npos) << summary.out;
+  // An audit asks for the run itself: it runs (and audits), and is not stored a second time.
+  const CliResult audited = run("run --N 3 --e 0.5 --k 1e5 --T 20 --db d.db --audit");
+  EXPECT_NE(audited.out.find("audit:"), std::string::npos) << audited.out;
+  EXPECT_EQ(count_runs(dir_ / "d.db"), 1);
   ASSERT_EQ(run("run --N 3 --e 0.5 --k 1e5 --T 20 --db d.db --seed 2 -q").exit_code, 0);
   EXPECT_EQ(count_runs(dir_ / "d.db"), 2);
 }

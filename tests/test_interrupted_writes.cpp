@@ -5,7 +5,9 @@
 // killed at random moments, many times.
 #include <signal.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -196,4 +198,27 @@ TEST_F(InterruptedWrites, InterruptedAnalyzeAndMergeSayWhatWasKept) {
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
   EXPECT_NE(slurp(dir_ / "merge.txt").find("interrupted by SIGTERM; nothing was merged"), std::string::npos) << slurp(dir_ / "merge.txt");
   EXPECT_EQ(count_runs(dir_ / "t.db"), 1);
+}
+
+// A reader without write access (another user's store, read-only media) reads a store that has no
+// journal, and is told, not misled, when a hot journal needs a writer. As root the test runs the
+// reader as the user nobody (setpriv); elsewhere it is skipped.
+TEST_F(InterruptedWrites, AReaderWithoutWriteAccess) {
+  if (geteuid() != 0 || std::system("command -v setpriv > /dev/null") != 0) GTEST_SKIP() << "needs root and setpriv";
+  ASSERT_EQ(run("run --N 2 --T 1 --transient 0 --db s.db -q").exit_code, 0);
+  ASSERT_EQ(chmod(dir_.c_str(), 0755), 0);
+  ASSERT_EQ(chmod((dir_ / "s.db").c_str(), 0644), 0);
+  const std::string as_nobody = "cd '" + dir_.string() + "' && setpriv --reuid=65534 --regid=65534 --clear-groups '" GRANCHAIN_BINARY
+                                "' export --db s.db -o /dev/null 2> nobody.txt";
+  int status = std::system(as_nobody.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(dir_ / "nobody.txt");
+  leave_hot_journal("s.db");
+  if (HasFatalFailure()) return;
+  ASSERT_EQ(chmod((dir_ / "s.db-journal").c_str(), 0644), 0);
+  status = std::system(as_nobody.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2);
+  EXPECT_NE(slurp(dir_ / "nobody.txt").find("has the journal of an interrupted write beside it"), std::string::npos)
+      << slurp(dir_ / "nobody.txt");
+  EXPECT_EQ(run("export --db s.db -o rows.csv").exit_code, 0);  // a writer rolls it back
+  expect_committed_state("s.db", 1);
 }

@@ -26,11 +26,20 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
   RegimeReport report;
-  // One trajectory, one sample: the run kept for each trajectory (the longest window, then the first).
+  // Why a run cannot enter the fits on its own ("" if it can).
+  const auto unusable = [](const NcollRun& r) -> std::string {
+    if (!std::isfinite(r.k)) return "k is not finite (the hard-sphere engine): n_coll(k) needs a finite k";
+    if (!std::isfinite(r.n_coll)) return "n_coll is not a number";
+    if (!(r.n_coll_err > 0))
+      return fmt::format("n_coll = {:g} has no positive error (too few collisions in the window for blocking; run longer)", r.n_coll);
+    return "";
+  };
+  // One trajectory, one sample: the run kept for each trajectory (of the usable ones, the longest
+  // window, then the first).
   std::map<std::string, std::size_t> kept;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
-    if (r.trajectory.empty()) continue;
+    if (r.trajectory.empty() || !unusable(r).empty()) continue;
     const auto [it, fresh] = kept.emplace(r.trajectory, i);
     if (!fresh && r.T > runs[it->second].T) it->second = i;
   }
@@ -39,18 +48,16 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   std::map<std::tuple<std::string, int, double, double, double, double, double>, std::size_t> first_result;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
-    std::string why;
-    if (!std::isfinite(r.k)) why = "k is not finite (the hard-sphere engine): n_coll(k) needs a finite k";
-    else if (!std::isfinite(r.n_coll)) why = "n_coll is not a number";
-    else if (!(r.n_coll_err > 0))
-      why = fmt::format("n_coll = {:g} has no positive error (too few collisions in the window for blocking; run longer)", r.n_coll);
-    else if (!r.trajectory.empty() && kept.at(r.trajectory) != i)
+    std::string why = unusable(r);
+    if (why.empty() && !r.trajectory.empty() && kept.at(r.trajectory) != i)
       why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",
                         runs[kept.at(r.trajectory)].run_id, r.T == runs[kept.at(r.trajectory)].T ? "" : ", a shorter window");
-    else if (const auto [at, fresh] = first_result.emplace(std::make_tuple(r.engine, r.N, r.kT0, r.e, r.k, r.n_coll, r.n_coll_err), i);
-             !fresh)
-      why = fmt::format("n_coll and its error are those of run {} to the last bit (zero scatter): not an independent sample",
-                        runs[at->second].run_id);
+    if (why.empty()) {
+      const auto [at, fresh] = first_result.emplace(std::make_tuple(r.engine, r.N, r.kT0, r.e, r.k, r.n_coll, r.n_coll_err), i);
+      if (!fresh)
+        why = fmt::format("n_coll and its error are those of run {} to the last bit (zero scatter): not an independent sample",
+                          runs[at->second].run_id);
+    }
     if (!why.empty()) {
       report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why});
       continue;

@@ -380,6 +380,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
       if (!events) throw std::runtime_error(fmt::format("--events: cannot write '{}'", o.events_path));
       if (!events_direct) std::filesystem::rename(events_tmp, o.events_path);
       stored += (stored.empty() ? "" : ", ") + fmt::format("collisions in {}", o.events_path);
+      announce_on_interrupt(fmt::format("written: {}; the JSON may be missing", stored));
     }
     if (json_requested) {
       if (json_stdout) {

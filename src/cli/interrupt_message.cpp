@@ -1,6 +1,7 @@
 #include "cli/interrupt_message.hpp"
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -43,6 +44,12 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::string& 
 }
 
 void announce_on_interrupt(const std::string& what_was_kept, const std::vector<std::string>& unfinished_files) {
+  // A handler installed before may run while the texts change: the signals wait until they are whole.
+  sigset_t block, previous;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &block, &previous);
   for (std::size_t i = 0; i < unfinished.size(); ++i) {
     const std::string f = i < unfinished_files.size() ? unfinished_files[i] : std::string();
     store(unfinished[i], f.size() < unfinished[i].size() ? f : std::string());
@@ -55,6 +62,7 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
   sa.sa_flags = SA_RESETHAND;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
 }  // namespace granchain

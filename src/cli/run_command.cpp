@@ -179,8 +179,9 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   }
 
   // A run whose identity (every parameter and the seed) is stored already is the same trajectory:
-  // it is read back, not run or stored again, so that no analysis can count it twice.
-  if (opts.use_db && std::filesystem::exists(opts.db_path)) {
+  // it is read back, not run or stored again, so that no analysis can count it twice. An audit
+  // asks for the run itself: it runs, and is not stored a second time.
+  if (opts.use_db && !opts.spec.engine.audit && std::filesystem::exists(opts.db_path)) {
     std::optional<ResultsStore::StoredRun> stored_run;
     try {
       stored_run = ResultsStore(opts.db_path).find_run(opts.spec);

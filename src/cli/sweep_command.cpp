@@ -201,7 +201,13 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     try {
       std::unordered_set<std::string> done;
       if (impl.dry_run) {
-        if (access(db_path.c_str(), F_OK) == 0) done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
+        if (access(db_path.c_str(), F_OK) == 0) {
+          try {
+            done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
+          } catch (const StoreError&) {  // a version-1 store is read as the first write would: upgraded
+            done = ResultsStore(db_path).point_keys();
+          }
+        }
       } else {
         // With a time limit, points that no invocation can fit in it are refused before the store
         // is opened for writing (or created), so nothing is written.

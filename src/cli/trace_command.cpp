@@ -131,6 +131,8 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     if (!o.events_path.empty()) events = std::make_unique<PendingFile>(o.events_path, events_csv(tr), "--events");
     samples.commit();
     if (events) events->commit();
+    announce_on_interrupt(fmt::format("the trace is written ({}{}); the figure may be missing or incomplete", o.output,
+                                      o.events_path.empty() ? "" : ", " + o.events_path));
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitStoreFailed;

@@ -110,14 +110,22 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
     return failures;
   }
   ResultsStore store(o.db);
-  const std::vector<std::size_t> todo = points_to_run(points, store.point_keys());
+  std::vector<std::size_t> todo;
+  for (std::size_t i : points_to_run(points, store.point_keys())) {
+    if (o.failed_keys->count(points[i].key)) failures.push_back(points[i].key + ": turned unphysical earlier in this command");
+    else todo.push_back(i);
+  }
   if (!o.quiet)
     fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", label, o.preset, points.size(),
                points.size() - todo.size(), o.db, todo.size(), o.threads);
   if (todo.empty()) return failures;
   SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
-    if (r) store.insert_sweep_point(*r, p.key, 1, p.replica);
-    else failures.push_back(p.key + ": " + error);
+    if (r) {
+      store.insert_sweep_point(*r, p.key, 1, p.replica);
+    } else {
+      failures.push_back(p.key + ": " + error);
+      o.failed_keys->insert(p.key);
+    }
   });
   const bool tty = isatty(STDERR_FILENO) != 0;
   SweepProgressCallback cb;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct ReproduceFlags {
   // --stored-only: what each figure's grids lacked ("fig6 (N = 20..150): 112 of 672 runs"), for its
   // report; shared, so figures (which get the flags as const) can add to it.
   std::shared_ptr<std::vector<std::string>> partial = std::make_shared<std::vector<std::string>>();
+  // Keys of points that turned unphysical in this command: not run again by a later figure.
+  std::shared_ptr<std::set<std::string>> failed_keys = std::make_shared<std::set<std::string>>();
   bool paper() const { return preset == "paper"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
 };

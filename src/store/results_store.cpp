@@ -39,18 +39,19 @@ std::string cannot_create_file_reason(const std::string& path) {
 
 void ResultsStore::recover_interrupted_write(const std::string& path, const std::string& option) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  const std::string journal = path + "-journal", wal = path + "-wal";
-  const bool leftover = fs::file_size(journal, ec) > 0 || (ec.clear(), fs::file_size(wal, ec) > 0);
-  if (!leftover) return;
+  const auto nonempty = [](const std::string& p) {
+    std::error_code ec;
+    const auto size = fs::file_size(p, ec);
+    return !ec && size > 0;
+  };
+  if (!nonempty(path + "-journal") && !nonempty(path + "-wal")) return;
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
   // SQLite rolls a hot journal back (or checkpoints a WAL) on the first read through a connection
-  // that may write; a journal that a live writer holds is not hot and is left alone.
-  if (::access(path.c_str(), R_OK | W_OK) != 0 || ::access(dir.c_str(), W_OK) != 0)
-    throw StoreError(fmt::format("{}: '{}' has the journal of an interrupted write beside it; SQLite must roll it back "
-                                 "before the store can be read, which needs write access to the store and its folder",
-                                 option, path));
+  // that may write; a journal that a live writer holds is not hot and is left alone. Without write
+  // access nothing is tried here: a reader of a store that is being written goes on (and waits),
+  // and one that meets a hot journal is told so by SQLite (interrupted_write_message).
+  if (::access(path.c_str(), R_OK | W_OK) != 0 || ::access(dir.c_str(), W_OK) != 0) return;
   sqlite3* db = nullptr;
   int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr);
   if (rc == SQLITE_OK) {
@@ -59,6 +60,13 @@ void ResultsStore::recover_interrupted_write(const std::string& path, const std:
   }
   sqlite3_close(db);
   (void)rc;  // a file that is no database at all is named by the caller's checks
+  (void)option;
+}
+
+std::string ResultsStore::interrupted_write_message(const std::string& path, const std::string& option) {
+  return fmt::format("{}: '{}' has the journal of an interrupted write beside it; SQLite must roll it back before the store "
+                     "can be read, which needs write access to the store and its folder",
+                     option, path);
 }
 
 void ResultsStore::preflight(const std::string& path, Access access, const std::string& option) {
@@ -83,6 +91,10 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
       const int prc = sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key='schema_version'", -1, &st, nullptr);
       if (busy(prc) || busy(sqlite3_extended_errcode(db))) {
         problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
+      } else if (sqlite3_extended_errcode(db) == SQLITE_READONLY_ROLLBACK) {
+        sqlite3_finalize(st);
+        sqlite3_close(db);
+        throw StoreError(interrupted_write_message(path, option));
       } else if (prc != SQLITE_OK) {
         // A database without our meta table: acceptable only if it is empty.
         sqlite3_stmt* any = nullptr;
@@ -150,7 +162,17 @@ ResultsStore::ResultsStore(const std::string& path, Access access) : path_(path)
     throw StoreError(fmt::format("--db: cannot open '{}' for reading: {}", path, msg));
   }
   sqlite3_busy_timeout(db_, 60000);
-  if (schema_version() != kStoreSchemaVersion) {
+  int version = 0;
+  try {
+    version = schema_version();
+  } catch (const StoreError&) {
+    const bool hot = sqlite3_extended_errcode(db_) == SQLITE_READONLY_ROLLBACK;
+    sqlite3_close(db_);
+    db_ = nullptr;
+    if (hot) throw StoreError(interrupted_write_message(path, "--db"));
+    throw;
+  }
+  if (version != kStoreSchemaVersion) {
     sqlite3_close(db_);
     db_ = nullptr;
     throw StoreError(fmt::format("--db: '{}' has an older store schema; it is upgraded by the first command that writes it "

@@ -58,6 +58,8 @@ class ResultsStore {
   // journal back and SQLite refuses to read. This rolls it back through a connection that may
   // write (nothing else is changed); throws StoreError when the store or its folder is not writable.
   static void recover_interrupted_write(const std::string& path, const std::string& option = "--db");
+  // What a reader without write access is told when SQLite finds such a journal (SQLITE_READONLY_ROLLBACK).
+  static std::string interrupted_write_message(const std::string& path, const std::string& option = "--db");
 
   explicit ResultsStore(const std::string& path);  // opens or creates
   // Access::ReadOnly: opens an existing store of the current schema for reading only (a version-1

@@ -136,6 +136,8 @@ std::string missing_schema_part(sqlite3* db, int version) {
       while (cols.row()) have.push_back(cols.column_text(0));
     }
     if (have.empty()) {
+      // The first stores (version 1) may lack the later tables; opening them for writing adds them.
+      if (version == 1 && table != "meta" && table != "runs" && table != "profiles") continue;
       missing = fmt::format("the table '{}'", table);
       break;
     }
