@@ -170,23 +170,12 @@ py::dict run(const py::kwargs& kwargs) {
   // The same rule as `granchain run`: a run whose identity (every parameter and the seed) is
   // stored already is read back with a warning, never run or stored twice.
   if (opts.use_db && !opts.spec.engine.audit && std::filesystem::exists(opts.db_path)) {
-    std::optional<ResultsStore::StoredRun> stored;
+    std::optional<ResultsStore::ReadBack> stored;
     {
       py::gil_scoped_release nogil;
-      stored = ResultsStore(opts.db_path).find_run(opts.spec);
+      stored = ResultsStore(opts.db_path).read_back_run(opts.spec);
     }
     if (stored) {
-      nlohmann::json j;
-      RunResult result;
-      try {
-        j = nlohmann::json::parse(stored->result_json);
-        result = run_result_from_json(j);
-      } catch (const std::exception& e) {
-        throw StoreError(fmt::format("run {} of {} cannot be read back ({}); nothing was run or written", stored->id,
-                                     opts.db_path, e.what()));
-      }
-      j["stored"] = {{"db", opts.db_path}, {"run_id", stored->id}};
-      j["reused"] = true;
       if (PyErr_WarnEx(PyExc_UserWarning,
                    fmt::format("run {} of {} is this run already (the same parameters and seed = {}, so the same "
                                "trajectory); it was read back, not run or stored again; for an independent replica "
@@ -195,7 +184,7 @@ py::dict run(const py::kwargs& kwargs) {
                        .c_str(),
                    1) != 0)
         throw py::error_already_set();  // warnings turned into errors
-      py::dict d = result_dict(result, j.dump(2), opts.db_path, stored->id);
+      py::dict d = result_dict(stored->result, stored->json.dump(2), opts.db_path, stored->id);
       d["reused"] = true;
       return d;
     }

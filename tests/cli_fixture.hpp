@@ -59,6 +59,17 @@ class Cli : public ::testing::Test {
     fs::remove(dir_ / "stderr.txt");
     return r;
   }
+  // Starts granchain in the test folder without waiting, its output (both streams) in `log` there;
+  // returns its process id.
+  pid_t start(const std::string& args, const std::string& log = "bg.txt") {
+    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' " + args + " > " + log + " 2>&1";
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    return pid;
+  }
   void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
   // Files the run left in its folder (besides the ones the test wrote).
   std::size_t files() const { return std::distance(fs::directory_iterator(dir_), fs::directory_iterator()); }

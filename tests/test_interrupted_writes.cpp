@@ -42,16 +42,6 @@ class InterruptedWrites : public Cli {
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
     ASSERT_GT(fs::file_size(dir_ / (name + "-journal")), 0u) << "no journal was left: the test shows nothing";
   }
-  // Starts granchain in the test folder without waiting; returns its pid.
-  pid_t start(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' " + args + " > /dev/null 2>&1";
-    const pid_t pid = fork();
-    if (pid == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    return pid;
-  }
   // The store holds its committed state: no uncommitted n_coll = -1, no scratch table.
   void expect_committed_state(const std::string& name, std::int64_t runs) {
     EXPECT_EQ(count_runs(dir_ / name), runs);
@@ -150,12 +140,7 @@ TEST_F(InterruptedWrites, SweepsAndMergesKilledAtRandomMomentsResume) {
 TEST_F(InterruptedWrites, InterruptedAnalyzeAndMergeSayWhatWasKept) {
   ASSERT_EQ(run("sweep --N 3 --e 0.5 --k 1e4,1e5,1e6 --T 20 --db s.db -q").exit_code, 0);
   const auto files_before = files();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' analyze --db s.db --plot q -q 2> log.txt";
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid = start("analyze --db s.db --plot q -q", "log.txt");
   // Once the plot script runs (a child that is python3), SIGTERM.
   const std::string children = "/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) + "/children";
   pid_t child = 0;
@@ -184,12 +169,7 @@ TEST_F(InterruptedWrites, InterruptedAnalyzeAndMergeSayWhatWasKept) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open((dir_ / "t.db").c_str(), &db), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(db, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
-  const pid_t merge = fork();
-  if (merge == 0) {
-    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' merge --into t.db s.db 2> merge.txt";
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t merge = start("merge --into t.db s.db", "merge.txt");
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   ASSERT_EQ(kill(merge, SIGTERM), 0);
   waitpid(merge, &status, 0);

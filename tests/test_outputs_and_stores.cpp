@@ -20,16 +20,6 @@ std::int64_t count_runs(const fs::path& db_path) { return query(db_path, "SELECT
 
 class OutputsAndStores : public Cli {
  protected:
-  // Starts granchain in the test folder without waiting, its output in `log`; returns its pid.
-  pid_t start(const std::string& args, const std::string& log) {
-    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' " + args + " > " + log + " 2>&1";
-    const pid_t pid = fork();
-    if (pid == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    return pid;
-  }
   static int wait_exit(pid_t pid) {
     int status = 0;
     waitpid(pid, &status, 0);

@@ -55,16 +55,6 @@ std::vector<std::string> profile_rows(const std::string& csv) {
 
 class SweepCli : public Cli {
  protected:
-  // Starts granchain in the test folder without waiting; returns its process id.
-  pid_t start(const std::string& args) {
-    const std::string cmd = "cd '" + dir_.string() + "' && exec '" GRANCHAIN_BINARY "' " + args + " > bg.txt 2>&1";
-    const pid_t pid = fork();
-    if (pid == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    return pid;
-  }
   std::string export_csv(const std::string& db, const std::string& table = "runs") {
     const CliResult r = run("export --db " + db + " --table " + table);
     EXPECT_EQ(r.exit_code, 0) << r.err;

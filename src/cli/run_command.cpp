@@ -112,30 +112,17 @@ class ProgressPrinter {
 namespace {
 
 // The outputs of a run read back from the store instead of run again (one line on standard error
-// says so): its JSON with "reused": true, and its summary.
-int report_stored_run(const RunFlags& impl, const RunOptions& opts, const ResultsStore::StoredRun& stored_run,
-                      bool json_stdout) {
+// says so): its JSON, marked as read back, and its summary.
+int report_stored_run(const RunFlags& impl, const RunOptions& opts, const ResultsStore::ReadBack& stored, bool json_stdout) {
   fmt::print(stderr,
              "granchain: run {} of {} is this run already (the same parameters and --seed {}, so the same trajectory); "
              "it was not run or stored again; for an independent replica give another --seed\n",
-             stored_run.id, opts.db_path, opts.spec.seed);
-  nlohmann::json j;
-  RunResult result;
+             stored.id, opts.db_path, opts.spec.seed);
+  const std::string where = fmt::format("run {} in {}, stored before and read back", stored.id, opts.db_path);
   try {
-    j = nlohmann::json::parse(stored_run.result_json);
-    result = run_result_from_json(j);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: run {} of {} cannot be read back ({}); nothing was written\n", stored_run.id,
-               opts.db_path, e.what());
-    return kExitStoreFailed;
-  }
-  j["stored"] = {{"db", opts.db_path}, {"run_id", stored_run.id}};
-  j["reused"] = true;
-  const std::string where = fmt::format("run {} in {}, stored before and read back", stored_run.id, opts.db_path);
-  try {
-    if (impl.json_option->count() > 0 && !json_stdout) write_file_atomically(impl.json_path, j.dump(2) + "\n", "--json");
-    if (json_stdout) write_standard_output(j.dump(2) + "\n");
-    else if (!impl.quiet) write_standard_output(run_summary(result, where));
+    if (impl.json_option->count() > 0 && !json_stdout) write_file_atomically(impl.json_path, stored.json.dump(2) + "\n", "--json");
+    if (json_stdout) write_standard_output(stored.json.dump(2) + "\n");
+    else if (!impl.quiet) write_standard_output(run_summary(stored.result, where));
   } catch (const std::exception& e) {
     fmt::print(stderr, "granchain: error: {}; the run is stored ({})\n", e.what(), where);
     return kExitStoreFailed;
@@ -182,9 +169,9 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   // it is read back, not run or stored again, so that no analysis can count it twice. An audit
   // asks for the run itself: it runs, and is not stored a second time.
   if (opts.use_db && !opts.spec.engine.audit && std::filesystem::exists(opts.db_path)) {
-    std::optional<ResultsStore::StoredRun> stored_run;
+    std::optional<ResultsStore::ReadBack> stored_run;
     try {
-      stored_run = ResultsStore(opts.db_path).find_run(opts.spec);
+      stored_run = ResultsStore(opts.db_path).read_back_run(opts.spec);
     } catch (const StoreError& e) {
       fmt::print(stderr, "granchain: error: {}; nothing was run or written\n", e.what());
       return kExitStoreFailed;

@@ -85,9 +85,9 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     if (!(o.to > o.from && o.to <= 1e15))
       throw InputError(fmt::format("--to = {} is out of range; valid range: from = {} < to <= 1e15", o.to, o.from));
     // Samples and contacts must be resolved by the clock at --to, as a run's are at transient + T.
-    if (!(o.dt >= 1e6 * (std::nextafter(o.to, 2 * o.to) - o.to)))
+    if (!(o.dt >= shortest_resolved_time(o.to)))
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt >= {:.3g} at to = {} (1e6 times the clock's "
-                                   "resolution there)", o.dt, 1e6 * (std::nextafter(o.to, 2 * o.to) - o.to), o.to));
+                                   "resolution there)", o.dt, shortest_resolved_time(o.to), o.to));
     if (!is_hard_sphere_engine(spec.run.engine.name) &&
         !(spec.run.params.k <= largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)))
       throw InputError(fmt::format("--to = {} is out of range at k = {:g}: a contact must last at least 1e6 times the clock's "

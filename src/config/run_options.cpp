@@ -209,7 +209,7 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
   const ChainParameters& p = o.spec.params;
   const double t_end = o.spec.transient + o.spec.T;
   const auto tau = [](double k, double m, double e) { return contact_time(k, damping_constant(k, e, m), m); };
-  const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= kResolutionSteps * ulp(t); };
+  const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= shortest_resolved_time(t); };
   if (resolved(p.k, p.m, p.e, t_end)) return;
   const ChainParameters def;
   const double t_def = (p.N < 50 ? 1e4 : 1e3) * 1.1;
@@ -218,7 +218,7 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
     if (n == "m") return !resolved(def.k, p.m, def.e, t_def);
     return !resolved(def.k, def.m, def.e, t_end);
   });
-  const double tau_min = kResolutionSteps * ulp(t_end);
+  const double tau_min = shortest_resolved_time(t_end);
   const double l2 = std::log(p.e) * std::log(p.e);
   const double pi2 = std::numbers::pi * std::numbers::pi;
   std::string range;
@@ -267,14 +267,23 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
 
 }  // namespace
 
+double shortest_resolved_time(double t) { return kResolutionSteps * ulp(t); }
+
 double largest_resolved_k(double m, double e, double t) {
-  const double tau_min = kResolutionSteps * ulp(t);
+  const double tau_min = shortest_resolved_time(t);
   const double l2 = std::log(e) * std::log(e);
   return m * (std::numbers::pi * std::numbers::pi + l2) / (2 * tau_min * tau_min);
 }
 
+namespace {
+
+// The clock's scale over a collapse launch (run_options.hpp).
+double launch_time_scale(int N, double a, double v0, double d) { return 2.0 * (N + 1) * (a + d) / v0; }
+
+}  // namespace
+
 void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0) {
-  const double t = 2.0 * (N + 1) * (a + d) / v0;
+  const double t = launch_time_scale(N, a, v0, d);
   const double k_max = largest_resolved_k(m, e, t);
   if (!(k <= k_max))
     throw InputError(fmt::format("--k: {:g} is out of range; valid range: 0 < k <= {} at e = {:g}, N = {}, a = {:g}, v0 = {:g} "
@@ -284,7 +293,7 @@ void check_collapse_contact_time(double k, double e, double m, double d, int N, 
 }
 
 void check_collapse_launch(int N, double a, double v0, double d) {
-  const double t = 2.0 * (N + 1) * (a + d) / v0;
+  const double t = launch_time_scale(N, a, v0, d);
   if (!(t <= 1e6))
     throw InputError(fmt::format("--a = {:g}, --v0 = {:g}: the launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g} is out of range; "
                                  "valid range: <= 1e6 (a launch is given up at t = 1e7)", a, v0, t));
@@ -295,8 +304,6 @@ void check_collapse_tc(double tc, double collapse_time) {
     throw InputError(fmt::format("--tc = {:g} is out of range; valid range: tc = 0 (off) or tc >= collapse-time = {:g}", tc,
                                  collapse_time));
 }
-
-
 
 const std::vector<ParameterInfo>& run_parameters() {
   static const std::vector<ParameterInfo> infos = [] {
@@ -367,10 +374,10 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
                                : fmt::format("T / 1e10 <= sample-interval <= T / 16, i.e. {} <= sample-interval <= {} at T = {} "
                                              "(a window of 16 to 1e10 profile samples)",
                                              rounded(o.spec.T / 1e10, false), rounded(o.spec.T / 16, true), o.spec.T));
-    if (o.spec.sample_interval < kResolutionSteps * ulp(t_end))
+    if (o.spec.sample_interval < shortest_resolved_time(t_end))
       out_of_range("sample-interval", given_or(raw, "sample-interval", o.spec.sample_interval),
                    fmt::format("sample-interval >= {} at transient + T = {} (1e6 times the clock's resolution there)",
-                               rounded(kResolutionSteps * ulp(t_end), false), t_end));
+                               rounded(shortest_resolved_time(t_end), false), t_end));
   }
   return o;
 }

@@ -36,6 +36,10 @@ struct RawValue {
 // T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.
 RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw);
 
+// The shortest interval the clock resolves at time t: 1e6 times its resolution ulp(t), the span a
+// contact, a profile sample or a trace step must at least have.
+double shortest_resolved_time(double t);
+
 // The clock's resolution limit of a soft contact: a contact (tau_c, Eqs. Dd, tauc) must last at
 // least 1e6 resolutions of the clock at the latest time t it can happen, i.e.
 // k <= m (pi^2 + ln^2 e) / (2 (1e6 ulp(t))^2). The largest such k.

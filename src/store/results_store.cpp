@@ -112,23 +112,16 @@ void ResultsStore::preflight(const std::string& path, Access access, const std::
         sqlite3_finalize(any);
       } else {
         const int step = sqlite3_step(st);
+        const int version = step == SQLITE_ROW ? sqlite3_column_int(st, 0) : 0;
+        sqlite3_finalize(st);
         if (busy(step)) {
           problem = "is busy: another process has held it locked for over 60 s; try again when it is done";
-        } else if (step == SQLITE_ROW) {
-          const int v = sqlite3_column_int(st, 0);
+        } else if (step == SQLITE_ROW && (version < 1 || version > kStoreSchemaVersion)) {
           // Version 1 is read as it is and upgraded when opened for writing.
-          if (v < 1 || v > kStoreSchemaVersion)
-            problem = fmt::format("has store schema version {}, this build reads 1 to {}", v, kStoreSchemaVersion);
-        }
-        sqlite3_finalize(st);
-        if (problem.empty()) {
+          problem = fmt::format("has store schema version {}, this build reads 1 to {}", version, kStoreSchemaVersion);
+        } else if (version > 0) {
           try {
-            int version = 0;
-            {
-              SqlStatement v(db, "SELECT value FROM meta WHERE key = 'schema_version'");
-              version = v.row() ? static_cast<int>(v.column_int(0)) : 0;
-            }
-            const std::string missing = version > 0 ? missing_schema_part(db, version) : "";
+            const std::string missing = missing_schema_part(db, version);
             if (!missing.empty())
               problem = fmt::format("is damaged or was not written by granchain: it lacks {} (store schema version {})", missing, version);
           } catch (const StoreError& e) {
@@ -272,12 +265,13 @@ ResultsStore::Stored ResultsStore::insert_run(const RunResult& r, const std::fun
   Stored out;
   out.id = in_transaction([&]() -> std::int64_t {
     // The same identity (every parameter and the seed) is the same trajectory: kept once.
+    const std::string identity = point_key(r.spec);
     SqlStatement find(db_, "SELECT run_id FROM run_points WHERE point_key = ?");
-    find.bind(1, point_key(r.spec));
+    find.bind(1, identity);
     if (find.row()) return find.column_int(0);
     const std::int64_t id = append_run(r);
     SqlStatement key(db_, "INSERT INTO run_points(point_key, run_id) VALUES(?,?)");
-    key.bind(1, point_key(r.spec));
+    key.bind(1, identity);
     key.bind(2, id);
     key.run();
     if (before_commit) before_commit(id);
@@ -287,11 +281,21 @@ ResultsStore::Stored ResultsStore::insert_run(const RunResult& r, const std::fun
   return out;
 }
 
-std::optional<ResultsStore::StoredRun> ResultsStore::find_run(const RunSpec& spec) {
+std::optional<ResultsStore::ReadBack> ResultsStore::read_back_run(const RunSpec& spec) {
   SqlStatement find(db_, "SELECT r.id, r.result_json FROM run_points p JOIN runs r ON r.id = p.run_id WHERE p.point_key = ?");
   find.bind(1, point_key(spec));
   if (!find.row()) return std::nullopt;
-  return StoredRun{find.column_int(0), find.column_text(1)};
+  ReadBack out;
+  out.id = find.column_int(0);
+  try {
+    out.json = nlohmann::json::parse(find.column_text(1));
+    out.result = run_result_from_json(out.json);
+  } catch (const std::exception& e) {
+    throw StoreError(fmt::format("run {} of '{}' cannot be read back ({})", out.id, path_, e.what()));
+  }
+  out.json["stored"] = {{"db", path_}, {"run_id", out.id}};
+  out.json["reused"] = true;
+  return out;
 }
 
 ResultsStore::Stored ResultsStore::insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed,

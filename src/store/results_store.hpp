@@ -11,6 +11,8 @@
 #include <string>
 #include <unordered_set>
 
+#include <nlohmann/json.hpp>
+
 #include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 
@@ -80,12 +82,15 @@ class ResultsStore {
   // before_commit, when given, runs inside that transaction with the new id (for example to write
   // an output that must exist exactly when the run is stored); if it throws, nothing is stored.
   Stored insert_run(const RunResult& r, const std::function<void(std::int64_t)>& before_commit = {});
-  // The stored run with this identity (point key, seed included): its id and JSON, or nothing.
-  struct StoredRun {
+  // The stored run with this identity (point key, seed included) read back: its id, its result and
+  // its JSON marked as read back ("stored": {db, run_id}, "reused": true); nothing if none. Throws
+  // StoreError naming the run when its JSON cannot be read.
+  struct ReadBack {
     std::int64_t id = 0;
-    std::string result_json;
+    RunResult result;
+    nlohmann::json json;
   };
-  std::optional<StoredRun> find_run(const RunSpec& spec);
+  std::optional<ReadBack> read_back_run(const RunSpec& spec);
   // A sweep point: in one transaction, appends the run, its profiles and its key unless a run
   // with that key is already stored. Returns the run's id and whether it was appended now.
   Stored insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed, int replica);

@@ -281,15 +281,15 @@ MergeReport merge_stores(const std::string& target, const std::vector<std::strin
   const bool existed = stat(target.c_str(), &st) == 0;
   try {
     return merge_into(target, sources);
-  } catch (const MergeConflict&) {
-    if (!existed) std::remove(target.c_str());  // a failed merge leaves no new file behind
-    throw;
-  } catch (const StoreError& e) {
-    if (!existed) std::remove(target.c_str());
-    throw MergeWriteError(fmt::format("{}; nothing was merged", e.what()));
   } catch (...) {
-    if (!existed) std::remove(target.c_str());
-    throw;
+    if (!existed) std::remove(target.c_str());  // a failed merge leaves no new file behind
+    try {
+      throw;
+    } catch (const MergeConflict&) {
+      throw;
+    } catch (const StoreError& e) {  // past the checks above: the stores could not be written or read
+      throw MergeWriteError(fmt::format("{}; nothing was merged", e.what()));
+    }
   }
 }
 
