@@ -89,7 +89,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   if (!(a >= 0 && std::isfinite(a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", a));
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
   check_collapse_launch(static_cast<int>(N), a, v0, ChainParameters{}.d);
-  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0);
+  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0, has_fine_clock(engine));
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
   const long long realizations = integer("realizations", 1000, 2, 10000000);
   const long long seed = integer("seed", 1, 0, 9223372036854775807LL);

@@ -91,13 +91,16 @@ const std::vector<BadInputRow> kRows = {
     {"run --engine hard --tc 1e-9 --N 3 --T 1 --no-db", 0, {}, kAll, {"engine hard"}},
 
     // k, m, T, T0, g, d: a contact must last 1e6 clock resolutions, heights must resolve d.
-    {"run --k 1e300", 2, {"--k = 1e300", "k <= 1.49e+12", "tau_c"}, kAll},
+    {"run --k 1e300", 2, {"--k = 1e300", "k <= 1.21e+44", "tau_c", "exact engine's clock"}, kAll},
+    {"run --engine reference --k 1e300", 2, {"--k = 1e300", "k <= 1.49e+12", "tau_c", "reference engine's clock"}, kAll},
+    {"run --engine reference-located --k 1e13 --N 3", 2, {"--k = 1e13", "k <= 1.49e+12"}, kAll},
     {"run --m 1e-300", 2, {"--m = 1e-300", "m >= ", "tau_c"}, kAll},
     {"run --engine hard --m 1e-300 --db {dir}/store.db", 2, {"--m = 1e-300", "m >= ", "height scale"}, kAll},
     {"run --T 1e20", 2, {"--T = 1e20", "transient + T <"}, kAll},
     {"run --T0 1e20", 2, {"--T0 = 1e20", "T0 <= "}, kAll},
     {"sweep --k 1e4,1e300 --T 1 --dry-run", 2, {"--k", "k <= "}, kAll},
     {"run --k 1e12 --N 3 --T 1 --no-db", 0, {}, kAll, {"k = 1e+12"}},
+    {"run --k 1e20 --N 3 --T 1 --no-db", 0, {}, kAll, {"k = 1e+20"}},
 
     // An output that is one of the command's inputs (the same file, however named, existing or
     // about to be created) is refused before anything runs.
@@ -144,8 +147,9 @@ const std::vector<BadInputRow> kRows = {
     {"sweep --sweep huge.json --dry-run", 2, {"--sweep: 'huge.json' holds a number out of range"}, kAll},
 
     // Ranges that hold in every command: collapse's k against its clock, its integers parsed as run's.
-    {"collapse --N 3 --e 0.05 --k 1e300 --no-db", 2, {"--k: 1e+300 is out of range", "1e6 times the clock's resolution"}, kAll},
-    {"collapse --N 3 --e 0.05 --k 1e4:1e20:x100 --no-db", 2, {"--k: 1e+18 is out of range"}, kAll},
+    {"collapse --N 3 --e 0.05 --k 1e300 --no-db", 2, {"--k: 1e+300 is out of range", "1e6 times the engine's clock resolution"}, kAll},
+    {"collapse --engine reference --N 3 --e 0.05 --k 1e4:1e20:x100 --no-db", 2, {"--k: 1e+18 is out of range"}, kAll},
+    {"collapse --N 3 --e 0.05 --k 1e4:1e60:x1e4 --no-db", 2, {"--k: 1e+52 is out of range"}, kAll},
     {"collapse --threads 0 --no-db", 2, {"--threads = '0'", "1 <= threads <= 1024"}, kAll},
     {"collapse --seed 18446744073709551616 --no-db", 2, {"--seed = '18446744073709551616'", "9223372036854775807"}, kAll},
     {"collapse --N 010 --e 0.5 --k 1e4 --realizations 4 --no-db", 0, {}, kAll, {"N = 10,"}},  // decimal, as run reads it

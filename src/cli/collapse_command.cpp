@@ -166,7 +166,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     check_collapse_launch(o.N, o.a, o.v0, defaults.d);
     if (!hard)
       for (double e : es)
-        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0);
+        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0, has_fine_clock(o.engine));
     base.setup = o.setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
     if (o.stop.empty()) o.stop = base.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
     if (o.stop != "ends" && o.stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", o.stop));

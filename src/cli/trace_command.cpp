@@ -88,11 +88,12 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     if (!(o.dt >= shortest_resolved_time(o.to)))
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt >= {:.3g} at to = {} (1e6 times the clock's "
                                    "resolution there)", o.dt, shortest_resolved_time(o.to), o.to));
+    const bool fine = has_fine_clock(spec.run.engine.name);
     if (!is_hard_sphere_engine(spec.run.engine.name) &&
-        !(spec.run.params.k <= largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)))
-      throw InputError(fmt::format("--to = {} is out of range at k = {:g}: a contact must last at least 1e6 times the clock's "
-                                   "resolution at to; valid range: k <= {:.3g} there", o.to, spec.run.params.k,
-                                   largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to)));
+        !(spec.run.params.k <= largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to, fine)))
+      throw InputError(fmt::format("--to = {} is out of range at k = {:g}: a contact must last at least 1e6 times the engine's "
+                                   "clock resolution at to; valid range: k <= {:.3g} there", o.to, spec.run.params.k,
+                                   largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to, fine)));
     if (!(o.dt > 0) || (o.to - o.from) / o.dt > 1e7)
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt > 0 with (to - from)/dt <= 1e7", o.dt));
     // The trace holds every height in memory (and in its CSV): at most 1e8 values.

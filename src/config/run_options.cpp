@@ -202,14 +202,16 @@ RawValue given_or(const std::map<std::string, RawValue>& raw, const std::string&
 
 // Time (soft engines). A contact lasts tau_c, with tau_c^2 = m (pi^2 + ln^2 e) / 2k (Eqs. Dd,
 // tauc), and the clock's resolution at the run's last instant t = transient + T is ulp(t) (about
-// 2^-52 t): tau_c >= 1e6 ulp(transient + T), i.e. k <= m (pi^2 + ln^2 e) / (2 tau_min^2). At the
-// paper's T = 1e4 that is k <= 1.49e12 for m = 1.
+// 2^-52 t) for a double clock, 2^-53 ulp(t) for the exact engine's FineTime: tau_c >= 1e6 times
+// that, i.e. k <= m (pi^2 + ln^2 e) / (2 tau_min^2). At the paper's T = 1e4 that is k <= 1.49e12
+// for m = 1 on a double clock (the reference engines) and k <= 1.2e44 for the exact engine.
 void check_contact_time(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
   if (is_hard_sphere_engine(o.spec.engine.name)) return;
   const ChainParameters& p = o.spec.params;
   const double t_end = o.spec.transient + o.spec.T;
   const auto tau = [](double k, double m, double e) { return contact_time(k, damping_constant(k, e, m), m); };
-  const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= shortest_resolved_time(t); };
+  const bool fine = has_fine_clock(o.spec.engine.name);
+  const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= shortest_resolved_time(t, fine); };
   if (resolved(p.k, p.m, p.e, t_end)) return;
   const ChainParameters def;
   const double t_def = (p.N < 50 ? 1e4 : 1e3) * 1.1;
@@ -218,7 +220,7 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
     if (n == "m") return !resolved(def.k, p.m, def.e, t_def);
     return !resolved(def.k, def.m, def.e, t_end);
   });
-  const double tau_min = shortest_resolved_time(t_end);
+  const double tau_min = shortest_resolved_time(t_end, fine);
   const double l2 = std::log(p.e) * std::log(p.e);
   const double pi2 = std::numbers::pi * std::numbers::pi;
   std::string range;
@@ -228,13 +230,14 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
   } else if (name == "m") {
     range = fmt::format("m >= {} at k = {}, e = {} and transient + T = {}", rounded(2 * p.k * tau_min * tau_min / (pi2 + l2), false),
                         p.k, p.e, t_end);
-  } else {  // the largest t_end whose ulp, 2^(ilogb(t) - 52), is at most tau_c / 1e6
-    const double t_max = std::ldexp(1.0, 53 + std::ilogb(tau(p.k, p.m, p.e) / kResolutionSteps));
+  } else {  // the largest t_end whose ulp, 2^(ilogb(t) - 52), is at most tau_c / 1e6 (times 2^53: fine)
+    const double t_max = std::ldexp(1.0, 53 + std::ilogb(tau(p.k, p.m, p.e) / kResolutionSteps) + (fine ? 53 : 0));
     range = fmt::format("transient + T < {} at k = {}, m = {} and e = {}", rounded(t_max, true), p.k, p.m, p.e);
   }
   out_of_range(name, given_or(raw, name, name == "k" ? p.k : name == "m" ? p.m : o.spec.T),
-               fmt::format("{}: a contact (tau_c = {:.3g} here) must last at least 1e6 times the clock's resolution at t = "
-                           "transient + T ({:.3g})", range, tau(p.k, p.m, p.e), ulp(t_end)));
+               fmt::format("{}: a contact (tau_c = {:.3g} here) must last at least 1e6 times the {} engine's clock resolution "
+                           "at t = transient + T ({:.3g})", range, tau(p.k, p.m, p.e), o.spec.engine.name,
+                           shortest_resolved_time(t_end, fine) / kResolutionSteps));
 }
 
 // Heights (all engines). The floor throws particles to heights of order k_B T0 / (m g) above a
@@ -267,10 +270,10 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
 
 }  // namespace
 
-double shortest_resolved_time(double t) { return kResolutionSteps * ulp(t); }
+double shortest_resolved_time(double t, bool fine) { return kResolutionSteps * (fine ? std::ldexp(ulp(t), -53) : ulp(t)); }
 
-double largest_resolved_k(double m, double e, double t) {
-  const double tau_min = shortest_resolved_time(t);
+double largest_resolved_k(double m, double e, double t, bool fine) {
+  const double tau_min = shortest_resolved_time(t, fine);
   const double l2 = std::log(e) * std::log(e);
   return m * (std::numbers::pi * std::numbers::pi + l2) / (2 * tau_min * tau_min);
 }
@@ -282,14 +285,14 @@ double launch_time_scale(int N, double a, double v0, double d) { return 2.0 * (N
 
 }  // namespace
 
-void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0) {
+void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0, bool fine) {
   const double t = launch_time_scale(N, a, v0, d);
-  const double k_max = largest_resolved_k(m, e, t);
+  const double k_max = largest_resolved_k(m, e, t, fine);
   if (!(k <= k_max))
     throw InputError(fmt::format("--k: {:g} is out of range; valid range: 0 < k <= {} at e = {:g}, N = {}, a = {:g}, v0 = {:g} "
-                                 "(a contact must last at least 1e6 times the clock's resolution, {:.3g}, over the launch's "
-                                 "time scale 2 (N + 1)(a + d) / v0 = {:.3g})",
-                                 k, rounded(k_max, true), e, N, a, v0, ulp(t), t));
+                                 "(a contact must last at least 1e6 times the engine's clock resolution, {:.3g}, over the "
+                                 "launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g})",
+                                 k, rounded(k_max, true), e, N, a, v0, shortest_resolved_time(t, fine) / kResolutionSteps, t));
 }
 
 void check_collapse_launch(int N, double a, double v0, double d) {

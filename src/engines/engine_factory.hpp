@@ -20,6 +20,10 @@ struct EngineChoice {
 // True for engines that treat the spheres as hard (k = infinity, instantaneous collisions).
 inline bool is_hard_sphere_engine(const std::string& name) { return name == "hard"; }
 
+// True for engines whose clock is a FineTime (fine_time.hpp), which resolves 2^-53 ulp(t) at
+// time t; the others step or schedule in plain doubles, which resolve ulp(t).
+inline bool has_fine_clock(const std::string& name) { return name == "exact"; }
+
 // Names accepted by make_engine, the default first.
 const std::vector<std::string>& engine_names();
 

@@ -4,15 +4,17 @@
 // touches its block only (a re-scan of kBlock times when the block's earliest slot moved later),
 // and the earliest slot overall is found by scanning the block minima once per event. An event
 // re-predicts several slots, so this costs less than a heap or tournament-tree climb per slot
-// (each climb is a chain of dependent loads and stores). Ties go to the lowest slot.
+// (each climb is a chain of dependent loads and stores). Ties go to the lowest slot. Time is a
+// double or a FineTime (fine_time.hpp).
 #include <limits>
 #include <vector>
 
 namespace granchain {
 
-class EventQueue {
+template <class Time>
+class BasicEventQueue {
  public:
-  explicit EventQueue(int slots = 1) { reset(slots); }
+  explicit BasicEventQueue(int slots = 1) { reset(slots); }
 
   // All slots at +infinity.
   void reset(int slots) {
@@ -24,8 +26,8 @@ class EventQueue {
     stale_ = true;
   }
 
-  void set(int slot, double t) {
-    const double old = t_[slot];
+  void set(int slot, Time t) {
+    const Time old = t_[slot];
     if (old == t) return;  // same time (often +inf again): nothing changes
     t_[slot] = t;
     const int b = slot / kBlock;
@@ -50,12 +52,12 @@ class EventQueue {
     if (stale_) find_next();
     return next_slot_;
   }
-  double next_time() const {
+  Time next_time() const {
     if (stale_) find_next();
     return next_t_;
   }
 
-  static constexpr double kNever = std::numeric_limits<double>::infinity();
+  static constexpr Time kNever = Time(std::numeric_limits<double>::infinity());
 
  private:
   static constexpr int kBlock = 8;
@@ -68,13 +70,15 @@ class EventQueue {
     next_slot_ = block_slot_[best];
     stale_ = false;
   }
-  std::vector<double> t_;           // each slot's time (padded to whole blocks with +inf)
-  std::vector<double> block_t_;     // earliest time in each block
+  std::vector<Time> t_;             // each slot's time (padded to whole blocks with +inf)
+  std::vector<Time> block_t_;       // earliest time in each block
   std::vector<int> block_slot_;     // and its slot
   int blocks_ = 1;
   mutable bool stale_ = true;
-  mutable double next_t_ = kNever;
+  mutable Time next_t_ = kNever;
   mutable int next_slot_ = 0;
 };
+
+using EventQueue = BasicEventQueue<double>;
 
 }  // namespace granchain

@@ -17,6 +17,9 @@ struct Event {
   double t;      // time of the event
   int i;         // lower particle of the pair (0-based); 0 for a floor hit
   double speed;  // |v_i - v_{i+1}| for contacts; outgoing speed for a floor hit
+  // Engines with a FineTime clock (fine_time.hpp): the time to 106 bits is t + t_low (t is that
+  // sum rounded to a double); 0 for the others.
+  double t_low = 0.0;
 };
 
 class EventSink {

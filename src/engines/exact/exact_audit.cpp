@@ -22,13 +22,13 @@ double uniform01(std::uint64_t& state) {
 }
 }  // namespace
 
-void ExactEngine::audit_interval(double a, double b) {
-  if (!(b > a) || !std::isfinite(b)) return;
+void ExactEngine::audit_interval(Time a, Time b) {
+  if (!(b > a) || !b.finite()) return;
   // A missed root leaves its function on the wrong side by a fraction of the amplitude of the
   // modes that drive it; round-off near a root is ~1e-16 of that. The tolerance, 1e-9 of the
   // amplitude (overlap_reach), sits far between the two.
   for (int q = 0; q < kAuditInstants; ++q) {
-    const double s = a + (b - a) * uniform01(audit_draws_);
+    const Time s = a + (b - a) * uniform01(audit_draws_);
     if (!(s > a && s < b)) continue;
     ++counters_.audit_instants;
     double* x = sx_.data();
@@ -54,7 +54,7 @@ void ExactEngine::audit_interval(double a, double b) {
     }
     if (floor_ != nullptr) {
       ++counters_.audit_values;
-      const double height = floor_s_ + (edge_u(0, false, s) - floor_u_);
+      const double height = floor_s_ + (bottom_u(s) - floor_u_);
       if (!(height > -(1e-12 * d_ + 1e-9 * overlap_reach(0)))) ++counters_.audit_violations;
     }
   }

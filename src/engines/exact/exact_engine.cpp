@@ -45,8 +45,9 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   amp0_.assign(n_, 0.0);
   gap_s_.assign(n_, 0.0);
   gap_t_.assign(n_, t);
-  gap_ua_.assign(n_, 0.0);
-  gap_ub_.assign(n_, 0.0);
+  gap_c_.assign(n_, 0.0);
+  gap_ma_.assign(n_, 0.0);
+  gap_mb_.assign(n_, 0.0);
   for (auto* s : {&sx_, &sxd_, &sv_, &sv2_}) s->assign(n_, 0.0);
   for (int k = 0; k < 2; ++k) {
     sy2_[k].assign(n_, 0.0);
@@ -66,15 +67,19 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
                                              i + 1, i + 2, x[i] / d_));
     }
   }
+  std::vector<double> xd(n_, 0.0);
+  for (int i = 0; i + 1 < n_; ++i) xd[i] = initial.v[i] - initial.v[i + 1];  // x_i' = v_i - v_{i+1}
   for (int lo = 0; lo < n_;) {
     int hi = lo;
-    while (hi + 1 < n_ && x[hi] > 0) ++hi;
-    form_cluster(lo, hi, t, &x[lo], &initial.v[lo]);
+    double vsum = initial.v[lo];
+    while (hi + 1 < n_ && x[hi] > 0) vsum += initial.v[++hi];
+    form_cluster(lo, hi, t, &x[lo], &xd[lo], vsum / (hi - lo + 1));
     lo = hi + 1;
   }
   for (int i = 0; i + 1 < n_; ++i) {
     if (lo_of_[i] != lo_of_[i + 1]) {
       gap_s_[i] = -x[i];
+      gap_c_[i] = V0_[i + 1] - V0_[lo_of_[i]];
       rebase_gap(i, t);
     }
   }
@@ -96,22 +101,16 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
 // ----------------------------------------------------------------------------------------------
 // Clusters
 
-void ExactEngine::form_cluster(int lo, int hi, double t, const double* x, const double* v) {
+void ExactEngine::form_cluster(int lo, int hi, Time t, const double* x, const double* xd, double V) {
   const int n = hi - lo + 1;
   hi_[lo] = hi;
-  double vsum = 0.0;
-  for (int p = 0; p < n; ++p) {
-    lo_of_[lo + p] = lo;
-    vsum += v[p];
-  }
+  for (int p = 0; p < n; ++p) lo_of_[lo + p] = lo;
   t0_[lo] = t;
   search_from_[lo] = 0.0;
-  V0_[lo] = vsum / n;
+  V0_[lo] = V;
   generation_[lo] = ++formations_;
   if (n >= 2) {
     const ClusterModeTable& tab = tables_[n];
-    double* xd = sv2_.data();
-    for (int i = 0; i + 1 < n; ++i) xd[i] = v[i] - v[i + 1];  // x_i' = v_i - v_{i+1}
     tab.to_modes(x, &y0_[lo]);
     tab.to_modes(xd, &yd0_[lo]);
     // sqrt(E_j) / omega0_j >= |y_j| at all later times (the energy never grows).
@@ -134,7 +133,7 @@ void ExactEngine::modes_at(int lo, double tau, double* y, double* yd) const {
   for (int j = 0; j < tab.M; ++j) tab.modes[j].evolve(y0_[lo + j], yd0_[lo + j], tau, y[j], yd[j]);
 }
 
-void ExactEngine::cached_modes(int lo, double t, const double*& y, const double*& yd) const {
+void ExactEngine::cached_modes(int lo, Time t, const double*& y, const double*& yd) const {
   if (cache_.lo != lo || cache_.generation != generation_[lo] || cache_.t != t) {
     modes_at(lo, t - t0_[lo], cache_.y.data(), cache_.yd.data());
     cache_.lo = lo;
@@ -145,50 +144,69 @@ void ExactEngine::cached_modes(int lo, double t, const double*& y, const double*
   yd = cache_.yd.data();
 }
 
-void ExactEngine::cluster_state(int lo, double t, double* x, double* xd, double* v) const {
+void ExactEngine::cluster_state(int lo, Time t, double* x, double* xd, double* v) const {
   const double *y = nullptr, *yd = nullptr;
   if (cluster_size(lo) >= 2) cached_modes(lo, t, y, yd);
-  cluster_state_local(lo, t - t0_[lo], y, yd, x, xd, v);
+  cluster_relative(lo, y, yd, x, xd, v);
+  const double V = com_velocity(lo, t);
+  for (int p = 0; p < cluster_size(lo); ++p) v[p] += V;
 }
 
-void ExactEngine::cluster_state_local(int lo, double tau, const double* y, const double* yd, double* x,
-                                      double* xd, double* v) const {
+void ExactEngine::cluster_relative(int lo, const double* y, const double* yd, double* x, double* xd, double* u) const {
   const int n = cluster_size(lo);
-  const double vcom = V0_[lo] - g_ * tau;
   if (n == 1) {
-    v[0] = vcom;
+    u[0] = 0.0;
     return;
   }
   const ClusterModeTable& tab = tables_[n];
   tab.to_overlaps(y, x);
   tab.to_overlaps(yd, xd);
-  // v_{i+1} = v_i - x_i', shifted so that the mean is the centre-of-mass velocity.
+  // v_{i+1} = v_i - x_i', shifted so that the mean is zero.
   double vr = 0.0, sum = 0.0;
   for (int p = 0; p < n; ++p) {
     if (p > 0) vr -= xd[p - 1];
-    v[p] = vr;
+    u[p] = vr;
     sum += vr;
   }
-  const double shift = vcom - sum / n;
-  for (int p = 0; p < n; ++p) v[p] += shift;
+  const double shift = sum / n;
+  for (int p = 0; p < n; ++p) u[p] -= shift;
 }
 
-// u = z_com(t) - z_com(t0) + sum_j c_j y_j(t - t0): the particle's height up to a constant.
-double ExactEngine::edge_u(int lo, bool top, double t) const {
-  const double tau = t - t0_[lo];
-  double u = tau * (V0_[lo] - 0.5 * g_ * tau);
+double ExactEngine::edge_mode(int lo, bool top, Time t) const {
   const int n = cluster_size(lo);
-  if (n >= 2) {
-    const ClusterModeTable& tab = tables_[n];
-    const double* c = top ? tab.top.data() : tab.bottom.data();
-    const double *y, *yd;
-    cached_modes(lo, t, y, yd);
-    for (int j = 0; j < tab.M; ++j) u += c[j] * y[j];
-  }
+  if (n < 2) return 0.0;
+  const ClusterModeTable& tab = tables_[n];
+  const double* c = top ? tab.top.data() : tab.bottom.data();
+  const double *y, *yd;
+  cached_modes(lo, t, y, yd);
+  double u = 0.0;
+  for (int j = 0; j < tab.M; ++j) u += c[j] * y[j];
   return u;
 }
 
-ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, double t) const {
+double ExactEngine::edge_mode_rate(int lo, bool top, Time t, double* scale) const {
+  const int n = cluster_size(lo);
+  if (n < 2) return 0.0;
+  const ClusterModeTable& tab = tables_[n];
+  const double* c = top ? tab.top.data() : tab.bottom.data();
+  const double *y, *yd;
+  cached_modes(lo, t, y, yd);
+  double u = 0.0, size = 0.0;
+  for (int j = 0; j < tab.M; ++j) {
+    u += c[j] * yd[j];
+    size += std::abs(c[j] * yd[j]);
+  }
+  if (scale != nullptr) *scale += size;
+  return u;
+}
+
+// u = z_com(t) - z_com(t0) + sum_j c_j y_j(t - t0): particle 1's height up to a constant.
+double ExactEngine::bottom_u(Time t) const {
+  const double tau = t - t0_[0];
+  return tau * (V0_[0] - 0.5 * g_ * tau) + edge_mode(0, false, t);
+}
+
+ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, Time t) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
   return EdgeTerm{&tab, &y0_[lo], &yd0_[lo], &amp0_[lo], top ? tab.top.data() : tab.bottom.data(), sign, t - t0_[lo]};
 }
@@ -196,42 +214,48 @@ ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, doub
 // ----------------------------------------------------------------------------------------------
 // Gaps and the floor height
 
-double ExactEngine::gap_at(int i, double t) const {
-  return gap_s_[i] + (edge_u(i + 1, false, t) - gap_ub_[i]) - (edge_u(lo_of_[i], true, t) - gap_ua_[i]);
+double ExactEngine::gap_at(int i, Time t) const {
+  return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (edge_mode(i + 1, false, t) - gap_mb_[i]) -
+         (edge_mode(lo_of_[i], true, t) - gap_ma_[i]);
 }
 
-void ExactEngine::sync_gap(int i, double t) {
-  const double ua = edge_u(lo_of_[i], true, t), ub = edge_u(i + 1, false, t);
-  gap_s_[i] += (ub - gap_ub_[i]) - (ua - gap_ua_[i]);
+double ExactEngine::gap_rate(int i, Time t, double* scale) const {
+  if (scale != nullptr) *scale = std::abs(gap_c_[i]);
+  return gap_c_[i] + edge_mode_rate(i + 1, false, t, scale) - edge_mode_rate(lo_of_[i], true, t, scale);
+}
+
+void ExactEngine::sync_gap(int i, Time t) {
+  const double ma = edge_mode(lo_of_[i], true, t), mb = edge_mode(i + 1, false, t);
+  gap_s_[i] += gap_c_[i] * (t - gap_t_[i]) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
   gap_t_[i] = t;
-  gap_ua_[i] = ua;
-  gap_ub_[i] = ub;
+  gap_ma_[i] = ma;
+  gap_mb_[i] = mb;
 }
 
-// A neighbour that did not re-form keeps the displacement origin sync_gap gave it at t.
-void ExactEngine::rebase_gap(int i, double t) {
+// A neighbour that did not re-form keeps the mode-part origin sync_gap gave it at t.
+void ExactEngine::rebase_gap(int i, Time t) {
   const int a = lo_of_[i], b = i + 1;
-  if (gap_t_[i] != t || t0_[a] == t) gap_ua_[i] = edge_u(a, true, t);
-  if (gap_t_[i] != t || t0_[b] == t) gap_ub_[i] = edge_u(b, false, t);
+  if (gap_t_[i] != t || t0_[a] == t) gap_ma_[i] = edge_mode(a, true, t);
+  if (gap_t_[i] != t || t0_[b] == t) gap_mb_[i] = edge_mode(b, false, t);
   gap_t_[i] = t;
 }
 
-void ExactEngine::sync_floor(double t) {
-  const double u = edge_u(0, false, t);
+void ExactEngine::sync_floor(Time t) {
+  const double u = bottom_u(t);
   floor_s_ += u - floor_u_;
   floor_t_ = t;
   floor_u_ = u;
 }
 
-void ExactEngine::rebase_floor(double t) {
+void ExactEngine::rebase_floor(Time t) {
   floor_t_ = t;
-  floor_u_ = edge_u(0, false, t);
+  floor_u_ = bottom_u(t);
 }
 
 // ----------------------------------------------------------------------------------------------
 // Events
 
-void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink) {
+void ExactEngine::split(int lo, int pair, Time t, double tau, EventSink& sink) {
   const int hi = hi_[lo];
   if (lo > 0) sync_gap(lo - 1, t);
   if (hi + 1 < n_) sync_gap(hi, t);
@@ -239,22 +263,34 @@ void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink)
   // The cluster is taken at its own root time tau (not t - t0, which rounds): the overlap that
   // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t).
   double* x = sx_.data();
-  double* v = sv_.data();
+  double* xd = sxd_.data();
+  double* u = sv_.data();
   double* y = sy2_[0].data();
   double* yd = sy2_[1].data();
   modes_at(lo, tau, y, yd);
-  cluster_state_local(lo, tau, y, yd, x, sxd_.data(), v);
+  cluster_relative(lo, y, yd, x, xd, u);
   const int r = pair - lo;
-  const double speed = std::abs(sxd_[r]);
-  form_cluster(lo, pair, t, x, v);
-  form_cluster(pair + 1, hi, t, x + r + 1, v + r + 1);
+  const double speed = std::abs(xd[r]);
+  // Centre-of-mass velocities of the two parts relative to the old one (u has mean zero).
+  const int n_lower = r + 1, n_upper = hi - pair;
+  double u_lower = 0.0, u_upper = 0.0;
+  for (int p = 0; p < n_lower; ++p) u_lower += u[p];
+  for (int p = n_lower; p < n_lower + n_upper; ++p) u_upper += u[p];
+  u_lower /= n_lower;
+  u_upper /= n_upper;
+  const double V = V0_[lo] - g_ * tau;
+  form_cluster(lo, pair, t, x, xd, V + u_lower);
+  form_cluster(pair + 1, hi, t, x + r + 1, xd + r + 1, V + u_upper);
   gap_s_[pair] = 0.0;  // the overlap has just returned to zero
+  gap_c_[pair] = u_upper - u_lower;
+  if (lo > 0) gap_c_[lo - 1] += u_lower;
+  if (hi + 1 < n_) gap_c_[hi] -= u_upper;
   if (lo > 0) rebase_gap(lo - 1, t);
   rebase_gap(pair, t);
   if (hi + 1 < n_) rebase_gap(hi, t);
   if (lo == 0) rebase_floor(t);
   ++counters_.contact_ends;
-  sink.on_event({EventKind::ContactEnd, t, pair, speed});
+  sink.on_event({EventKind::ContactEnd, t.value(), pair, speed, t.low()});
   predict_cluster(lo);
   predict_cluster(pair + 1);
   if (lo > 0) predict_gap(lo - 1);
@@ -263,23 +299,38 @@ void ExactEngine::split(int lo, int pair, double t, double tau, EventSink& sink)
   if (lo == 0) predict_floor();
 }
 
-void ExactEngine::merge(int pair, double t, EventSink& sink) {
+void ExactEngine::merge(int pair, Time t, EventSink& sink) {
   const int a = lo_of_[pair], b = pair + 1, hi = hi_[b];
   const int na = pair - a + 1;
   if (a > 0) sync_gap(a - 1, t);
   if (hi + 1 < n_) sync_gap(hi, t);
   if (a == 0) sync_floor(t);
-  // Overlaps indexed from a: pairs a..pair-1 from cluster a, pair itself (0: contact begins),
-  // pairs b..hi-1 from cluster b; velocities of particles a..hi.
+  // Overlaps indexed from a: pairs a..pair-1 from cluster a, pair itself (0: contact begins,
+  // its rate minus the gap's rate), pairs b..hi-1 from cluster b.
   double* x = sx_.data();
-  double* v = sv_.data();
-  cluster_state(a, t, x, sxd_.data(), v);
-  cluster_state(b, t, x + na, sxd_.data() + na, v + na);
+  double* xd = sxd_.data();
+  double* u = sv_.data();
+  const double *y = nullptr, *yd = nullptr;
+  if (na >= 2) cached_modes(a, t, y, yd);
+  cluster_relative(a, y, yd, x, xd, u);
+  if (hi > pair + 1) cached_modes(b, t, y, yd);
+  cluster_relative(b, y, yd, x + na, xd + na, u + na);
+  // The gap's rate: c = V_b - V_a plus the edges' velocities relative to their centres of mass.
+  const double c = gap_c_[pair];
+  const double rate = c + u[na] - u[na - 1];
+  const double scale = std::abs(c) + std::abs(u[na]) + std::abs(u[na - 1]);
   x[na - 1] = 0.0;
-  const double speed = std::abs(v[na - 1] - v[na]);
-  form_cluster(a, hi, t, x, v);
+  xd[na - 1] = -rate;
+  const double speed = std::abs(rate);
+  // The new centre of mass moves at V_a + (n_b / n) c relative to cluster a's.
+  const int n = hi - a + 1, nb = hi - pair;
+  const double dVa = c * nb / n, dVb = dVa - c;
+  form_cluster(a, hi, t, x, xd, com_velocity(a, t) + dVa);
+  if (a > 0) gap_c_[a - 1] += dVa;
+  if (hi + 1 < n_) gap_c_[hi] -= dVb;
   // A grazing contact: the gap closed with no approach speed that double precision can resolve
-  // (a cluster's edge pushing a particle that rests against it). The new overlap and its rate are
+  // (below 1e-13 of the terms its rate sums: a cluster's edge pushing a particle that rests
+  // against it). The new overlap and its rate are
   // zero up to the round-off of the cluster's modes, which could end the contact at the instant it
   // began, again and again. The contact's end is therefore searched from tau = 1e-6 tau_c on, when
   // the push has made the overlap (omega tau)^2 / 2 ~ 1e-11 of the neighbouring overlaps, far above
@@ -292,7 +343,7 @@ void ExactEngine::merge(int pair, double t, EventSink& sink) {
   // then costs O(log) events instead of one every 1e-6 tau_c. While held, the pair's spring acts
   // on overlaps of round-off size only. Any resolvable contact beginning in the cluster releases
   // every hold in it, since it brings relative motion that double precision resolves again.
-  if (speed <= 1e-13 * (std::abs(v[na - 1]) + std::abs(v[na]))) {
+  if (speed <= 1e-13 * scale) {
     search_from_[a] = kResolutionSkip * tau_c_;
     ++counters_.grazing_contacts;
     const int streak = ++grazing_streak_[pair];
@@ -309,42 +360,52 @@ void ExactEngine::merge(int pair, double t, EventSink& sink) {
   if (a > 0) rebase_gap(a - 1, t);
   if (hi + 1 < n_) rebase_gap(hi, t);
   if (a == 0) rebase_floor(t);
-  sink.on_event({EventKind::ContactBegin, t, pair, speed});
+  sink.on_event({EventKind::ContactBegin, t.value(), pair, speed, t.low()});
   predict_cluster(a);
   if (a > 0) predict_gap(a - 1);
   if (hi + 1 < n_) predict_gap(hi);
   if (a == 0) predict_floor();
 }
 
-void ExactEngine::floor_hit(double t, EventSink& sink) {
+void ExactEngine::floor_hit(Time t, EventSink& sink) {
   const int hi = hi_[0];
   if (hi + 1 < n_) sync_gap(hi, t);
-  double* v = sv_.data();
-  cluster_state(0, t, sx_.data(), sxd_.data(), v);
-  const double speed = floor_->bounce(-v[0]);
+  double* x = sx_.data();
+  double* xd = sxd_.data();
+  double* u = sv_.data();
+  const double *y = nullptr, *yd = nullptr;
+  if (hi > 0) cached_modes(0, t, y, yd);
+  cluster_relative(0, y, yd, x, xd, u);
+  const double V = com_velocity(0, t), v1 = V + u[0];
+  const double speed = floor_->bounce(-v1);
   if (!std::isfinite(speed) || speed < 0) {
-    throw UnphysicalStateError(t, 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t));
+    throw UnphysicalStateError(t.value(), 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t.value()));
   }
-  v[0] = speed;
-  form_cluster(0, hi, t, sx_.data(), v);
+  // Particle 1's velocity jumps by dv: x_1' by dv, the centre of mass by dv / n.
+  const double dv = speed - v1, dV = dv / (hi + 1);
+  if (hi > 0) xd[0] += dv;
+  form_cluster(0, hi, t, x, xd, V + dV);
+  if (hi + 1 < n_) gap_c_[hi] -= dV;
   floor_s_ = 0.0;
   rebase_floor(t);
   if (hi + 1 < n_) rebase_gap(hi, t);
   ++counters_.floor_hits;
-  sink.on_event({EventKind::FloorHit, t, 0, speed});
+  sink.on_event({EventKind::FloorHit, t.value(), 0, speed, t.low()});
   predict_cluster(0);
   if (hi + 1 < n_) predict_gap(hi);
   predict_floor();
 }
 
 // No physics happens: the cluster is re-formed from its own state so that its searches restart.
-void ExactEngine::refresh_cluster(int lo, double t) {
+void ExactEngine::refresh_cluster(int lo, Time t) {
   const int hi = hi_[lo];
   if (lo > 0) sync_gap(lo - 1, t);
   if (hi + 1 < n_) sync_gap(hi, t);
   if (lo == 0) sync_floor(t);
-  cluster_state(lo, t, sx_.data(), sxd_.data(), sv_.data());
-  form_cluster(lo, hi, t, sx_.data(), sv_.data());
+  const double *y = nullptr, *yd = nullptr;
+  if (hi > lo) cached_modes(lo, t, y, yd);
+  cluster_relative(lo, y, yd, sx_.data(), sxd_.data(), sv_.data());
+  form_cluster(lo, hi, t, sx_.data(), sxd_.data(), com_velocity(lo, t));
   if (lo > 0) rebase_gap(lo - 1, t);
   if (hi + 1 < n_) rebase_gap(hi, t);
   if (lo == 0) rebase_floor(t);
@@ -356,11 +417,11 @@ void ExactEngine::refresh_cluster(int lo, double t) {
 
 void ExactEngine::handle(int slot, EventSink& sink) {
   const Slot s = slots_[slot];
-  const double t = s.t;
+  const Time t = s.t;
   if (t == last_event_t_) {
     if (++same_time_events_ > kMaxSameTimeEvents) {
-      throw UnphysicalStateError(t, s.pair + 1, s.pair + 2,
-                                 fmt::format("events pile up at t = {:.17g} without time advancing", t));
+      throw UnphysicalStateError(t.value(), s.pair + 1, s.pair + 2,
+                                 fmt::format("events pile up at t = {:.17g} without time advancing", t.value()));
     }
   } else {
     same_time_events_ = 0;
@@ -386,18 +447,19 @@ void ExactEngine::handle(int slot, EventSink& sink) {
     split(slot, s.pair, t, s.tau, sink);
   } else if (s.kind == SlotKind::PassThrough) {
     throw UnphysicalStateError(
-        t, s.pair + 1, s.pair + 2,
+        t.value(), s.pair + 1, s.pair + 2,
         fmt::format("particles {} and {} passed through each other at t = {:.10g} (overlap reached d)",
-                    s.pair + 1, s.pair + 2, t));
+                    s.pair + 1, s.pair + 2, t.value()));
   } else {
     refresh_cluster(slot, t);
   }
 }
 
-void ExactEngine::advance_to(double t, EventSink& sink) {
+void ExactEngine::advance_to(double t_end, EventSink& sink) {
+  const Time t = t_end;
   if (!(t >= now_)) throw std::logic_error("ExactEngine::advance_to: time must not go back");
   while (queue_.next_time() <= t) {
-    const double t_event = queue_.next_time();
+    const Time t_event = queue_.next_time();
     handle(next_slot(), sink);
     if (audit_) audit_interval(t_event, std::min(queue_.next_time(), t));
     if (sink.stop_requested()) {
@@ -410,7 +472,7 @@ void ExactEngine::advance_to(double t, EventSink& sink) {
   state_valid_ = false;
 }
 
-void ExactEngine::set_slot(int slot, double t, SlotKind kind, int pair, double tau) {
+void ExactEngine::set_slot(int slot, Time t, SlotKind kind, int pair, double tau) {
   slots_[slot] = Slot{t, kind, pair, tau};
   queue_.set(slot, t);
 }
@@ -420,28 +482,26 @@ void ExactEngine::set_slot(int slot, double t, SlotKind kind, int pair, double t
 
 const ChainState& ExactEngine::state() const {
   if (state_valid_) return state_;
-  state_.t = now_;
+  state_.t = now_.value();
   state_.z.resize(n_);
   state_.v.resize(n_);
   double* x = sx_.data();
-  double* u_top = sxd_.data();  // edge displacement u of each cluster's top particle, at lo
+  double* m_top = sxd_.data();  // mode part of each cluster's top particle, at lo
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
-    double ub;
-    if (hi_[lo] == lo) {  // a free particle: a parabola (the common case, written out)
-      const double tau = now_ - t0_[lo];
-      state_.v[lo] = V0_[lo] - g_ * tau;
-      ub = tau * (V0_[lo] - 0.5 * g_ * tau);
-      u_top[lo] = ub;
+    double m_bottom = 0.0;
+    if (hi_[lo] == lo) {  // a free particle (the common case, written out)
+      state_.v[lo] = com_velocity(lo, now_);
+      m_top[lo] = 0.0;
     } else {
       cluster_state(lo, now_, x + lo, sv2_.data(), &state_.v[lo]);
-      ub = edge_u(lo, false, now_);  // modes come from the cache
-      u_top[lo] = edge_u(lo, true, now_);
+      m_bottom = edge_mode(lo, false, now_);  // modes come from the cache
+      m_top[lo] = edge_mode(lo, true, now_);
     }
     if (lo == 0) {
-      state_.z[0] = 0.5 * d_ + floor_s_ + ub - floor_u_;
+      state_.z[0] = 0.5 * d_ + floor_s_ + bottom_u(now_) - floor_u_;
     } else {
       const int i = lo - 1;  // open pair below this cluster
-      x[i] = -(gap_s_[i] + (ub - gap_ub_[i]) - (u_top[lo_of_[i]] - gap_ua_[i]));
+      x[i] = -(gap_s_[i] + gap_c_[i] * (now_ - gap_t_[i]) + (m_bottom - gap_mb_[i]) - (m_top[lo_of_[i]] - gap_ma_[i]));
     }
   }
   for (int i = 0; i + 1 < n_; ++i) state_.z[i + 1] = state_.z[i] + d_ - x[i];

@@ -11,10 +11,13 @@
 // proven root-free (Taylor lower bounds whose remainders are bounded by the modes' amplitudes, which
 // never grow), which converge onto the root to round-off, so no event can be skipped.
 //
-// Positions are never stored as absolute heights. The engine keeps the gap of every open pair,
-// the overlaps of closed pairs (as mode amplitudes) and the height of particle 1 above the floor,
-// each as a value at a reference time plus displacements since then, so an overlap of 1e-7 d at
-// k = 1e12 keeps its full relative precision.
+// Positions and velocities are never differenced as absolute values. The engine keeps the gap of
+// every open pair with the relative velocity of the clusters on either side, the overlaps of
+// closed pairs and their rates (as mode amplitudes), and the height of particle 1 above the floor,
+// each as a value at a reference time plus displacements since then: an overlap of 1e-7 d at
+// k = 1e12 keeps its full relative precision, and so does a relative speed of 1e-20 between
+// particles that move at speed 1 (gravity cancels in every gap). Absolute velocities enter only the
+// floor height and the reported state.
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -22,6 +25,7 @@
 #include "engines/exact/cluster_modes.hpp"
 #include "engines/engine.hpp"
 #include "engines/event_queue.hpp"
+#include "engines/fine_time.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 
@@ -38,7 +42,7 @@ class ExactEngine final : public Engine {
   std::string_view name() const override { return "exact"; }
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override;
-  double time() const override { return now_; }
+  double time() const override { return now_.value(); }
   EngineCounters counters() const override { return counters_; }
 
   // Kinetic + elastic (k x^2 / 2 per closed contact) + gravitational energy at time(), per unit
@@ -49,6 +53,7 @@ class ExactEngine final : public Engine {
   std::vector<double> overlaps() const;
 
  private:
+  using Time = FineTime;  // absolute times; local times (since a reference time) are doubles
   static constexpr double kInf = std::numeric_limits<double>::infinity();
   // Root-free steps allowed per prediction; past that the prediction becomes a "refresh" at the
   // last proven-safe time, where the search starts again (no physics happens at a refresh).
@@ -63,7 +68,7 @@ class ExactEngine final : public Engine {
 
   enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
   struct Slot {
-    double t;
+    Time t;
     SlotKind kind;
     int pair;
     double tau = 0;  // for cluster events: the root in the cluster's own time (t rounds t0 + tau)
@@ -97,24 +102,34 @@ class ExactEngine final : public Engine {
 
   // --- clusters (indexed by their lowest particle lo) ---
   int cluster_size(int lo) const { return hi_[lo] - lo + 1; }
-  void form_cluster(int lo, int hi, double t, const double* x, const double* v);
-  // Modes, overlaps (x, xd: n-1 values) and velocities (v: n values) of the cluster at time t.
-  void cluster_state(int lo, double t, double* x, double* xd, double* v) const;
-  // The same at local time tau = t - t0 given directly (no rounding through t).
-  void cluster_state_local(int lo, double tau, const double* y, const double* yd, double* x, double* xd,
-                           double* v) const;
+  // x, xd: the n-1 overlaps and their rates; V: the centre-of-mass velocity at t.
+  void form_cluster(int lo, int hi, Time t, const double* x, const double* xd, double V);
+  // Overlaps (x, xd: n-1 values) and velocities (v: n values) of the cluster at time t.
+  void cluster_state(int lo, Time t, double* x, double* xd, double* v) const;
+  // Overlaps and rates from the modes y, yd, and the velocities relative to the centre of mass
+  // (u: n values, mean zero), built from the overlap rates alone.
+  void cluster_relative(int lo, const double* y, const double* yd, double* x, double* xd, double* u) const;
+  double com_velocity(int lo, Time t) const { return V0_[lo] - g_ * (t - t0_[lo]); }
   void modes_at(int lo, double tau, double* y, double* yd) const;
-  // Displacement coordinate u of the bottom (top = false) or top particle: centre-of-mass
-  // displacement since the cluster formed plus the mode part.
-  double edge_u(int lo, bool top, double t) const;
-  EdgeTerm edge_term(int lo, bool top, double sign, double t) const;
+  // Mode part of the bottom (top = false) or top particle's height and velocity: its displacement
+  // from the centre of mass up to a constant (0 for a single particle). *scale, when given,
+  // receives the sum of the terms' magnitudes (the size of the rate's round-off).
+  double edge_mode(int lo, bool top, Time t) const;
+  double edge_mode_rate(int lo, bool top, Time t, double* scale = nullptr) const;
+  // Height coordinate of particle 1: centre-of-mass displacement since formation plus mode part.
+  double bottom_u(Time t) const;
+  EdgeTerm edge_term(int lo, bool top, double sign, Time t) const;
 
   // --- gaps and the floor height, each a value at a reference time ---
-  double gap_at(int i, double t) const;
-  void sync_gap(int i, double t);    // move the reference of open gap i to t (clusters unchanged)
-  void rebase_gap(int i, double t);  // after a neighbour re-formed at t: new displacement origin
-  void sync_floor(double t);
-  void rebase_floor(double t);
+  // Open pair i at time t: gap_s + gap_c (t - gap_t) + [mode part of the upper edge since gap_t]
+  // - [mode part of the lower edge since gap_t]; gap_c is the relative velocity of the two
+  // clusters' centres of mass (constant while neither re-forms: gravity cancels).
+  double gap_at(int i, Time t) const;
+  double gap_rate(int i, Time t, double* scale = nullptr) const;
+  void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
+  void rebase_gap(int i, Time t);  // after a neighbour re-formed at t: new mode-part origin
+  void sync_floor(Time t);
+  void rebase_floor(Time t);
 
   // --- prediction ---
   void predict_cluster(int lo);
@@ -129,14 +144,14 @@ class ExactEngine final : public Engine {
 
   // --- events ---
   void handle(int slot, EventSink& sink);
-  void split(int lo, int pair, double t, double tau, EventSink& sink);
-  void merge(int pair, double t, EventSink& sink);
-  void floor_hit(double t, EventSink& sink);
-  void refresh_cluster(int lo, double t);
+  void split(int lo, int pair, Time t, double tau, EventSink& sink);
+  void merge(int pair, Time t, EventSink& sink);
+  void floor_hit(Time t, EventSink& sink);
+  void refresh_cluster(int lo, Time t);
 
   // --- audit (exact_audit.cpp) ---
   static constexpr int kAuditInstants = 2;
-  void audit_interval(double a, double b);
+  void audit_interval(Time a, Time b);
   bool audit_ = false;
   std::uint64_t audit_draws_ = 0;
 
@@ -144,7 +159,7 @@ class ExactEngine final : public Engine {
   int cluster_slot(int lo) const { return lo; }
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
-  void set_slot(int slot, double t, SlotKind kind, int pair, double tau = 0.0);
+  void set_slot(int slot, Time t, SlotKind kind, int pair, double tau = 0.0);
   int next_slot() const { return queue_.next_slot(); }
 
   int n_;
@@ -154,25 +169,29 @@ class ExactEngine final : public Engine {
 
   std::vector<int> hi_;            // hi_[lo]: top particle of the cluster whose bottom is lo
   std::vector<int> lo_of_;         // lo_of_[p]: bottom particle of p's cluster
-  std::vector<double> t0_, V0_;    // formation time and centre-of-mass velocity then
+  std::vector<Time> t0_;           // formation time
+  std::vector<double> V0_;         // centre-of-mass velocity then
   std::vector<double> search_from_;  // local time from which the cluster's contact ends are searched
   // Repeated grazing contacts of one pair (see merge): consecutive grazing begins of pair i, and
   // the absolute time before which the overlap of pair i is not allowed to end its contact.
   std::vector<int> grazing_streak_;
-  std::vector<double> hold_until_;
+  std::vector<Time> hold_until_;
   std::vector<std::uint64_t> generation_;  // distinct for every formation (mode-cache key)
   std::uint64_t formations_ = 0;
   std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1
   std::vector<double> amp0_;       // sqrt(E_j) / omega0_j at formation (bounds |y_j| from then on)
-  std::vector<double> gap_s_, gap_t_, gap_ua_, gap_ub_;  // open pair i: gap at gap_t_, edge u's then
-  double floor_s_ = 0, floor_t_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
+  std::vector<Time> gap_t_;                    // open pair i: reference time
+  std::vector<double> gap_s_, gap_c_;          // gap then, centre-of-mass relative velocity
+  std::vector<double> gap_ma_, gap_mb_;        // mode parts of the lower and upper edge at gap_t_
+  Time floor_t_ = 0;
+  double floor_s_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
 
   std::vector<Slot> slots_;
-  EventQueue queue_;
+  BasicEventQueue<Time> queue_;
 
-  double now_ = 0;
+  Time now_ = 0;
   std::uint64_t same_time_events_ = 0;
-  double last_event_t_ = 0;
+  Time last_event_t_ = 0;
   mutable EngineCounters counters_;
 
   mutable ChainState state_;
@@ -185,12 +204,12 @@ class ExactEngine final : public Engine {
   struct ModeCache {
     int lo = -1;
     std::uint64_t generation = 0;
-    double t = 0;
+    Time t = 0;
     std::vector<double> y, yd;
   };
   mutable ModeCache cache_;
   // Modes of cluster lo at time t (through the cache); pointers valid until the next call.
-  void cached_modes(int lo, double t, const double*& y, const double*& yd) const;
+  void cached_modes(int lo, Time t, const double*& y, const double*& yd) const;
 };
 
 }  // namespace granchain

@@ -285,7 +285,7 @@ void ExactEngine::predict_cluster(int lo) {
   }
   const ClusterModeTable& tab = tables_[n];
   const bool watch = overlap_reach(lo) >= d_;  // could an overlap reach d?
-  const double t0 = t0_[lo];
+  const Time t0 = t0_[lo];
   if (n == 2 && !watch && tab.modes[0].kind == ModeKind::Under) {
     const double tau = pair_contact_end(lo);
     ++counters_.closed_form_predictions;
@@ -327,19 +327,16 @@ bool ExactEngine::has_holds(int lo) const {
 
 void ExactEngine::predict_gap(int i) {
   const int a = lo_of_[i], b = i + 1;
-  const double t = gap_t_[i];
+  const Time t = gap_t_[i];
   // Valid until either neighbour changes on its own (its internal event or refresh); any other
   // change of a neighbour re-predicts this gap.
-  const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
+  const Time horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
   EdgeFunction fn;
-  // f(s) = gap(t) + [u_b(t+s) - u_b(t)] - [u_a(t+s) - u_a(t)]; gravity cancels in the
-  // centre-of-mass parts, which leaves a line plus the mode parts.
-  const double ta = t - t0_[a], tb = t - t0_[b];
-  fn.c1 = (V0_[b] - g_ * tb) - (V0_[a] - g_ * ta);
-  fn.c0 = gap_s_[i] - (gap_ub_[i] - tb * (V0_[b] - 0.5 * g_ * tb)) + (gap_ua_[i] - ta * (V0_[a] - 0.5 * g_ * ta));
-  fn.noise = 8 * std::numeric_limits<double>::epsilon() *
-             (std::abs(gap_s_[i]) + std::abs(gap_ub_[i]) + std::abs(tb * (V0_[b] - 0.5 * g_ * tb)) +
-              std::abs(gap_ua_[i]) + std::abs(ta * (V0_[a] - 0.5 * g_ * ta)));
+  // f(s) = gap(t) + c s + [m_b(t+s) - m_b(t)] - [m_a(t+s) - m_a(t)] (gap_at): a line, since
+  // gravity cancels between the centres of mass, plus the mode parts.
+  fn.c1 = gap_c_[i];
+  fn.c0 = gap_s_[i] - gap_mb_[i] + gap_ma_[i];
+  fn.noise = 8 * std::numeric_limits<double>::epsilon() * (std::abs(gap_s_[i]) + std::abs(gap_mb_[i]) + std::abs(gap_ma_[i]));
   if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
   if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
   // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
@@ -358,7 +355,7 @@ void ExactEngine::predict_floor() {
     set_slot(floor_slot(), kInf, SlotKind::None, 0);
     return;
   }
-  const double t = floor_t_;
+  const Time t = floor_t_;
   const double tau = t - t0_[0];
   EdgeFunction fn;
   // f(s) = h(t) + u_1(t+s) - u_1(t): a parabola under gravity plus the modes of the cluster.
