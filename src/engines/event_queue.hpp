@@ -26,7 +26,7 @@ class BasicEventQueue {
     stale_ = true;
   }
 
-  void set(int slot, Time t) {
+  void set(int slot, const Time& t) {
     const Time old = t_[slot];
     if (old == t) return;  // same time (often +inf again): nothing changes
     t_[slot] = t;

@@ -23,6 +23,11 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   k_over_m_ = law.k_over_m;
   D_ = law.D;
   tau_c_ = law.tau_c;
+  if (n_ >= 2 && tables_[2].modes[0].kind == ModeKind::Under) {
+    const ModeConstants& mc = tables_[2].modes[0];
+    pair_.tau = std::numbers::pi / mc.w;
+    pair_.restitution = std::exp(-mc.beta * pair_.tau);
+  }
   const double t = initial.t;
   now_ = last_event_t_ = t;
   for (int i = 0; i < n_; ++i) {
@@ -124,13 +129,31 @@ void ExactEngine::form_cluster(int lo, int hi, Time t, const double* x, const do
 }
 
 void ExactEngine::modes_at(int lo, double tau, double* y, double* yd) const {
-  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  const int n = cluster_size(lo);
+  // A binary contact begun at zero overlap, at its end tau = pi / w: the overlap is zero and its
+  // rate -e times the initial one (Eqs. tauc, Dd), with e = exp(-beta pi / w) of this mode.
+  if (n == 2 && y0_[lo] == 0.0 && tau == pair_.tau) {
+    y[0] = 0.0;
+    yd[0] = -pair_.restitution * yd0_[lo];
+    return;
+  }
+  const ClusterModeTable& tab = tables_[n];
   if (tau == 0.0) {
     std::copy_n(&y0_[lo], tab.M, y);
     std::copy_n(&yd0_[lo], tab.M, yd);
     return;
   }
   for (int j = 0; j < tab.M; ++j) tab.modes[j].evolve(y0_[lo + j], yd0_[lo + j], tau, y[j], yd[j]);
+}
+
+void ExactEngine::seed_cache(int lo, Time t, const double* y, const double* yd) const {
+  if (cache_.lo == lo && cache_.generation == generation_[lo] && cache_.t == t) return;
+  const int M = cluster_size(lo) - 1;
+  std::copy_n(y, M, cache_.y.data());
+  std::copy_n(yd, M, cache_.yd.data());
+  cache_.lo = lo;
+  cache_.generation = generation_[lo];
+  cache_.t = t;
 }
 
 void ExactEngine::cached_modes(int lo, Time t, const double*& y, const double*& yd) const {
@@ -257,17 +280,27 @@ void ExactEngine::rebase_floor(Time t) {
 
 void ExactEngine::split(int lo, int pair, Time t, double tau, EventSink& sink) {
   const int hi = hi_[lo];
-  if (lo > 0) sync_gap(lo - 1, t);
-  if (hi + 1 < n_) sync_gap(hi, t);
-  if (lo == 0) sync_floor(t);
   // The cluster is taken at its own root time tau (not t - t0, which rounds): the overlap that
-  // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t).
-  double* x = sx_.data();
-  double* xd = sxd_.data();
-  double* u = sv_.data();
+  // ends is zero to round-off and the velocities carry no error of order (dv/dt) ulp(t). The
+  // gaps and the floor height are synchronised with these same modes (through the cache).
   double* y = sy2_[0].data();
   double* yd = sy2_[1].data();
   modes_at(lo, tau, y, yd);
+  if (lo > 0) {
+    seed_cache(lo, t, y, yd);
+    sync_gap(lo - 1, t);
+  }
+  if (hi + 1 < n_) {
+    seed_cache(lo, t, y, yd);
+    sync_gap(hi, t);
+  }
+  if (lo == 0) {
+    seed_cache(lo, t, y, yd);
+    sync_floor(t);
+  }
+  double* x = sx_.data();
+  double* xd = sxd_.data();
+  double* u = sv_.data();
   cluster_relative(lo, y, yd, x, xd, u);
   const int r = pair - lo;
   const double speed = std::abs(xd[r]);
@@ -472,7 +505,7 @@ void ExactEngine::advance_to(double t_end, EventSink& sink) {
   state_valid_ = false;
 }
 
-void ExactEngine::set_slot(int slot, Time t, SlotKind kind, int pair, double tau) {
+void ExactEngine::set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau) {
   slots_[slot] = Slot{t, kind, pair, tau};
   queue_.set(slot, t);
 }

@@ -159,7 +159,7 @@ class ExactEngine final : public Engine {
   int cluster_slot(int lo) const { return lo; }
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
-  void set_slot(int slot, Time t, SlotKind kind, int pair, double tau = 0.0);
+  void set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau = 0.0);
   int next_slot() const { return queue_.next_slot(); }
 
   int n_;
@@ -210,6 +210,13 @@ class ExactEngine final : public Engine {
   mutable ModeCache cache_;
   // Modes of cluster lo at time t (through the cache); pointers valid until the next call.
   void cached_modes(int lo, Time t, const double*& y, const double*& yd) const;
+  // Makes y, yd (computed elsewhere) the cache's modes of cluster lo at time t.
+  void seed_cache(int lo, Time t, const double* y, const double* yd) const;
+  // The binary contact begun at zero overlap (two free particles meeting): it ends at
+  // tau = pi / w (= tau_c) with rate -restitution times the initial one (modes_at, pair_contact_end).
+  struct PairContact {
+    double tau = -1.0, restitution = 0.0;
+  } pair_;
 };
 
 }  // namespace granchain

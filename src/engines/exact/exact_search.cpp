@@ -273,6 +273,7 @@ double ExactEngine::pair_contact_end(int lo) const {
   const ModeConstants& mc = tables_[2].modes[0];
   const double y0 = std::max(y0_[lo], 0.0), v0 = yd0_[lo];
   if (y0 == 0 && v0 <= 0) return 0.0;
+  if (y0 == 0) return pair_.tau;  // phi = 0: the whole contact, tau_c
   const double phi = std::atan2(y0, (v0 + mc.beta * y0) / mc.w);  // in [0, pi]
   return (std::numbers::pi - phi) / mc.w;
 }
