@@ -207,22 +207,6 @@ double ExactEngine::edge_mode(int lo, bool top, Time t) const {
   return u;
 }
 
-double ExactEngine::edge_mode_rate(int lo, bool top, Time t, double* scale) const {
-  const int n = cluster_size(lo);
-  if (n < 2) return 0.0;
-  const ClusterModeTable& tab = tables_[n];
-  const double* c = top ? tab.top.data() : tab.bottom.data();
-  const double *y, *yd;
-  cached_modes(lo, t, y, yd);
-  double u = 0.0, size = 0.0;
-  for (int j = 0; j < tab.M; ++j) {
-    u += c[j] * yd[j];
-    size += std::abs(c[j] * yd[j]);
-  }
-  if (scale != nullptr) *scale += size;
-  return u;
-}
-
 // u = z_com(t) - z_com(t0) + sum_j c_j y_j(t - t0): particle 1's height up to a constant.
 double ExactEngine::bottom_u(Time t) const {
   const double tau = t - t0_[0];
@@ -240,11 +224,6 @@ ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, Time
 double ExactEngine::gap_at(int i, Time t) const {
   return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (edge_mode(i + 1, false, t) - gap_mb_[i]) -
          (edge_mode(lo_of_[i], true, t) - gap_ma_[i]);
-}
-
-double ExactEngine::gap_rate(int i, Time t, double* scale) const {
-  if (scale != nullptr) *scale = std::abs(gap_c_[i]);
-  return gap_c_[i] + edge_mode_rate(i + 1, false, t, scale) - edge_mode_rate(lo_of_[i], true, t, scale);
 }
 
 void ExactEngine::sync_gap(int i, Time t) {

@@ -111,11 +111,9 @@ class ExactEngine final : public Engine {
   void cluster_relative(int lo, const double* y, const double* yd, double* x, double* xd, double* u) const;
   double com_velocity(int lo, Time t) const { return V0_[lo] - g_ * (t - t0_[lo]); }
   void modes_at(int lo, double tau, double* y, double* yd) const;
-  // Mode part of the bottom (top = false) or top particle's height and velocity: its displacement
-  // from the centre of mass up to a constant (0 for a single particle). *scale, when given,
-  // receives the sum of the terms' magnitudes (the size of the rate's round-off).
+  // Mode part of the bottom (top = false) or top particle's height: its displacement from the
+  // centre of mass up to a constant (0 for a single particle).
   double edge_mode(int lo, bool top, Time t) const;
-  double edge_mode_rate(int lo, bool top, Time t, double* scale = nullptr) const;
   // Height coordinate of particle 1: centre-of-mass displacement since formation plus mode part.
   double bottom_u(Time t) const;
   EdgeTerm edge_term(int lo, bool top, double sign, Time t) const;
@@ -125,7 +123,6 @@ class ExactEngine final : public Engine {
   // - [mode part of the lower edge since gap_t]; gap_c is the relative velocity of the two
   // clusters' centres of mass (constant while neither re-forms: gravity cancels).
   double gap_at(int i, Time t) const;
-  double gap_rate(int i, Time t, double* scale = nullptr) const;
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void rebase_gap(int i, Time t);  // after a neighbour re-formed at t: new mode-part origin
   void sync_floor(Time t);
