@@ -206,7 +206,7 @@ TEST(HardSphereEngine, TwoSpheresOnAWallCollapseBelowTheExactCriticalValue) {
 // engine's collision law is the hard one exactly (v' = -e v after tau_c), so 25 spheres launched
 // in free space (e = 0.9 > e_c(25)) end with the hard-sphere velocities to round-off at any k.
 // Where three spheres meet within a time delta, the soft contacts overlap while tau_c > delta and
-// the outcome differs; it becomes the hard one once tau_c << delta.
+// the outcome differs; it becomes the hard one once tau_c << delta. Both hold up to k = 1e20.
 TEST(HardSphereEngine, SoftExactEngineConvergesToHardSpheres) {
   auto max_diff = [](const ChainState& a, const ChainState& b) {
     double d = 0;
@@ -218,7 +218,7 @@ TEST(HardSphereEngine, SoftExactEngineConvergesToHardSpheres) {
   HardSphereEngine h(hard, s, nullptr);
   EventRecorder hr;
   ASSERT_TRUE(run_to_separation(h, hr, 200.0));
-  for (double k : {1e6, 1e9, 1e12}) {
+  for (double k : {1e6, 1e9, 1e12, 1e16, 1e20}) {
     ChainParameters soft = hard;
     soft.k = k;
     ExactEngine x(soft, s, nullptr);
@@ -232,7 +232,7 @@ TEST(HardSphereEngine, SoftExactEngineConvergesToHardSpheres) {
   const ChainState s3{0.0, {0.0, 1.5, 3.0 + 1e-5}, {1.0, 0.0, -1.0}};
   HardSphereEngine h3(three, s3, nullptr);
   ASSERT_TRUE(run_to_separation(h3, hr, 100.0));
-  for (double k : {1e8, 1e10, 1e12, 1e14}) {
+  for (double k : {1e8, 1e10, 1e12, 1e14, 1e17, 1e20}) {
     ChainParameters soft = three;
     soft.k = k;
     ExactEngine x(soft, s3, nullptr);

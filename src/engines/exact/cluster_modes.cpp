@@ -131,9 +131,9 @@ void ClusterModeTable::to_modes(const double* x, double* y) const { to_overlaps(
 ClusterModeTables::ClusterModeTables(int N, double k_over_m, double D)
     : k_over_m_(k_over_m), D_(D), tables_(static_cast<std::size_t>(N) + 1) {}
 
-const ClusterModeTable& ClusterModeTables::operator[](int n) const {
+const ClusterModeTable& ClusterModeTables::build(int n) const {
   auto& slot = tables_[static_cast<std::size_t>(n)];
-  if (!slot) slot = std::make_unique<ClusterModeTable>(n, k_over_m_, D_);
+  slot = std::make_unique<ClusterModeTable>(n, k_over_m_, D_);
   return *slot;
 }
 

@@ -91,9 +91,13 @@ struct ClusterModeTable {
 class ClusterModeTables {
  public:
   ClusterModeTables(int N, double k_over_m, double D);
-  const ClusterModeTable& operator[](int n) const;
+  const ClusterModeTable& operator[](int n) const {
+    const auto& slot = tables_[static_cast<std::size_t>(n)];
+    return slot ? *slot : build(n);
+  }
 
  private:
+  const ClusterModeTable& build(int n) const;
   double k_over_m_, D_;
   mutable std::vector<std::unique_ptr<ClusterModeTable>> tables_;
 };

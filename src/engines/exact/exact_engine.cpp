@@ -195,10 +195,8 @@ void ExactEngine::cluster_relative(int lo, const double* y, const double* yd, do
   for (int p = 0; p < n; ++p) u[p] -= shift;
 }
 
-double ExactEngine::edge_mode(int lo, bool top, Time t) const {
-  const int n = cluster_size(lo);
-  if (n < 2) return 0.0;
-  const ClusterModeTable& tab = tables_[n];
+double ExactEngine::cluster_edge_mode(int lo, bool top, Time t) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
   const double* c = top ? tab.top.data() : tab.bottom.data();
   const double *y, *yd;
   cached_modes(lo, t, y, yd);

@@ -113,7 +113,8 @@ class ExactEngine final : public Engine {
   void modes_at(int lo, double tau, double* y, double* yd) const;
   // Mode part of the bottom (top = false) or top particle's height: its displacement from the
   // centre of mass up to a constant (0 for a single particle).
-  double edge_mode(int lo, bool top, Time t) const;
+  double edge_mode(int lo, bool top, Time t) const { return hi_[lo] == lo ? 0.0 : cluster_edge_mode(lo, top, t); }
+  double cluster_edge_mode(int lo, bool top, Time t) const;  // clusters of two or more
   // Height coordinate of particle 1: centre-of-mass displacement since formation plus mode part.
   double bottom_u(Time t) const;
   EdgeTerm edge_term(int lo, bool top, double sign, Time t) const;
