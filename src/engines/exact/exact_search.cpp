@@ -329,6 +329,15 @@ bool ExactEngine::has_holds(int lo) const {
 void ExactEngine::predict_gap(int i) {
   const int a = lo_of_[i], b = i + 1;
   const Time t = gap_t_[i];
+  if (a == i && hi_[b] == b) {  // two free particles: a line (first_root's closed form, written out)
+    const double c0 = gap_s_[i], c1 = gap_c_[i];
+    const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t) - t;
+    const double s = c0 <= 0 && c1 < 0 ? 0.0 : quadratic_step(c0, c1, 0.0);
+    ++counters_.closed_form_predictions;
+    if (s <= horizon) set_slot(gap_slot(i), t + s, SlotKind::ContactBegin, i);
+    else set_slot(gap_slot(i), kInf, SlotKind::None, i);
+    return;
+  }
   // Valid until either neighbour changes on its own (its internal event or refresh); any other
   // change of a neighbour re-predicts this gap.
   const Time horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
