@@ -142,10 +142,15 @@ struct PendingGap {
   real g0, dV, g;  // g: gravity in the floor height, 0 in a gap
   std::vector<OracleCluster> below, above;  // zero or one each
   real scale;                               // size of the neighbours' mode parts and speeds
+  real above0 = 0, below0 = 0;              // the edges at t0 (set by start_edges)
+  void start_edges() {
+    if (!above.empty()) above0 = above[0].edge(0, false);
+    if (!below.empty()) below0 = below[0].edge(0, true);
+  }
   real value(real tau) const {
     real v = g0 + dV * tau - 0.5L * g * tau * tau;
-    if (!above.empty()) v += above[0].edge(tau, false) - above[0].edge(0, false);
-    if (!below.empty()) v -= below[0].edge(tau, true) - below[0].edge(0, true);
+    if (!above.empty()) v += above[0].edge(tau, false) - above0;
+    if (!below.empty()) v -= below[0].edge(tau, true) - below0;
     return v;
   }
 };
@@ -275,9 +280,14 @@ OracleTally check_against_oracle(const ChainParameters& p, std::uint64_t seed, s
     const ChainState& s = engine.state();
     const bool grazing = engine.counters().grazing_contacts != grazing_before;
     grazing_before = engine.counters().grazing_contacts;
+    std::vector<int> lo_of(p.N), hi_of(p.N);  // each particle's cluster, bottom and top
     for (int lo = 0; lo < p.N;) {
       int hi = lo;
       while (hi + 1 < p.N && (x[hi] > 0 || (e.kind == EventKind::ContactBegin && hi == e.i))) ++hi;
+      for (int q = lo; q <= hi; ++q) {
+        lo_of[q] = lo;
+        hi_of[q] = hi;
+      }
       if (hi > lo && holds(lo, hi) && pending.count(lo) == 0) {
         if (grazing) {
           ++tally.skipped_grazing;
@@ -290,16 +300,6 @@ OracleTally check_against_oracle(const ChainParameters& p, std::uint64_t seed, s
       lo = hi + 1;
     }
     // Open gaps and the floor height whose neighbours just changed (not pending any more).
-    std::vector<int> lo_of(p.N), hi_of(p.N);
-    for (int lo = 0; lo < p.N;) {
-      int hi = lo;
-      while (hi + 1 < p.N && (x[hi] > 0 || (e.kind == EventKind::ContactBegin && hi == e.i))) ++hi;
-      for (int q = lo; q <= hi; ++q) {
-        lo_of[q] = lo;
-        hi_of[q] = hi;
-      }
-      lo = hi + 1;
-    }
     auto oracle_of = [&](int lo, int hi, std::vector<OracleCluster>& out) {
       if (hi == lo) return;
       std::vector<double> cx(x.begin() + lo, x.begin() + hi), cxd(hi - lo);
@@ -338,6 +338,7 @@ OracleTally check_against_oracle(const ChainParameters& p, std::uint64_t seed, s
           oracle_of(i + 1, hb, c.above);
           c.scale = speed_scale(la, hb);
         }
+        c.start_edges();
         gaps.emplace(i, std::move(c));
       }
     }

@@ -220,8 +220,7 @@ ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, Time
 // Gaps and the floor height
 
 double ExactEngine::gap_at(int i, Time t) const {
-  return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (edge_mode(i + 1, false, t) - gap_mb_[i]) -
-         (edge_mode(lo_of_[i], true, t) - gap_ma_[i]);
+  return gap_from_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t));
 }
 
 void ExactEngine::sync_gap(int i, Time t) {
@@ -485,59 +484,6 @@ void ExactEngine::advance_to(double t_end, EventSink& sink) {
 void ExactEngine::set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau) {
   slots_[slot] = Slot{t, kind, pair, tau};
   queue_.set(slot, t);
-}
-
-// ----------------------------------------------------------------------------------------------
-// Observables
-
-const ChainState& ExactEngine::state() const {
-  if (state_valid_) return state_;
-  state_.t = now_.value();
-  state_.z.resize(n_);
-  state_.v.resize(n_);
-  double* x = sx_.data();
-  double* m_top = sxd_.data();  // mode part of each cluster's top particle, at lo
-  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
-    double m_bottom = 0.0;
-    if (hi_[lo] == lo) {  // a free particle (the common case, written out)
-      state_.v[lo] = com_velocity(lo, now_);
-      m_top[lo] = 0.0;
-    } else {
-      cluster_state(lo, now_, x + lo, sv2_.data(), &state_.v[lo]);
-      m_bottom = edge_mode(lo, false, now_);  // modes come from the cache
-      m_top[lo] = edge_mode(lo, true, now_);
-    }
-    if (lo == 0) {
-      state_.z[0] = 0.5 * d_ + floor_s_ + bottom_u(now_) - floor_u_;
-    } else {
-      const int i = lo - 1;  // open pair below this cluster
-      x[i] = -(gap_s_[i] + gap_c_[i] * (now_ - gap_t_[i]) + (m_bottom - gap_mb_[i]) - (m_top[lo_of_[i]] - gap_ma_[i]));
-    }
-  }
-  for (int i = 0; i + 1 < n_; ++i) state_.z[i + 1] = state_.z[i] + d_ - x[i];
-  state_valid_ = true;
-  return state_;
-}
-
-std::vector<double> ExactEngine::overlaps() const {
-  std::vector<double> x(n_, 0.0), xd(n_, 0.0), v(n_, 0.0);
-  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) cluster_state(lo, now_, &x[lo], &xd[lo], &v[lo]);
-  for (int i = 0; i + 1 < n_; ++i) {
-    if (lo_of_[i] != lo_of_[i + 1]) x[i] = -gap_at(i, now_);
-  }
-  x.pop_back();
-  return x;
-}
-
-double ExactEngine::mechanical_energy_per_mass() const {
-  const ChainState& s = state();
-  const std::vector<double> x = overlaps();
-  double e = 0.0;
-  for (int i = 0; i < n_; ++i) e += 0.5 * s.v[i] * s.v[i] + g_ * (s.z[i] - 0.5 * d_);
-  for (double xi : x) {
-    if (xi > 0) e += 0.5 * k_over_m_ * xi * xi;
-  }
-  return e;
 }
 
 }  // namespace granchain

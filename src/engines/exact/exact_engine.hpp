@@ -124,6 +124,11 @@ class ExactEngine final : public Engine {
   // - [mode part of the lower edge since gap_t]; gap_c is the relative velocity of the two
   // clusters' centres of mass (constant while neither re-forms: gravity cancels).
   double gap_at(int i, Time t) const;
+  // The same from the mode parts of the lower cluster's top (m_a) and the upper one's bottom (m_b)
+  // at t.
+  double gap_from_edges(int i, Time t, double m_a, double m_b) const {
+    return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
+  }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void rebase_gap(int i, Time t);  // after a neighbour re-formed at t: new mode-part origin
   void sync_floor(Time t);

@@ -21,13 +21,20 @@ using taylor::P;
 // ----------------------------------------------------------------------------------------------
 // Prediction
 
+namespace {
+
+// Free flight: the first root of c0 + c1 s + p2 s^2 / 2 (a line or a parabola), in closed form.
+// A gap that is zero with no relative velocity and no relative acceleration (two free spheres
+// touching at equal velocities, in free space) stays zero: no force acts, no contact begins.
+double free_flight_root(double c0, double c1, double p2) {
+  return c0 <= 0 && (c1 < 0 || (c1 == 0 && p2 < 0)) ? 0.0 : quadratic_step(c0, c1, 0.5 * p2);
+}
+
+}  // namespace
+
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
-  if (fn.terms == 0) {  // free flight: a line or a parabola, solved in closed form
-    // A gap that is zero with no relative velocity and no relative acceleration (two free spheres
-    // touching at equal velocities, in free space) stays zero: no force acts, no contact begins.
-    const double s = fn.c0 <= 0 && (fn.c1 < 0 || (fn.c1 == 0 && fn.p2 < 0))
-                         ? 0.0
-                         : quadratic_step(fn.c0, fn.c1, 0.5 * fn.p2);
+  if (fn.terms == 0) {
+    const double s = free_flight_root(fn.c0, fn.c1, fn.p2);
     ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
@@ -329,10 +336,9 @@ bool ExactEngine::has_holds(int lo) const {
 void ExactEngine::predict_gap(int i) {
   const int a = lo_of_[i], b = i + 1;
   const Time t = gap_t_[i];
-  if (a == i && hi_[b] == b) {  // two free particles: a line (first_root's closed form, written out)
-    const double c0 = gap_s_[i], c1 = gap_c_[i];
+  if (a == i && hi_[b] == b) {  // two free particles: a line, no edge function to build
     const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t) - t;
-    const double s = c0 <= 0 && c1 < 0 ? 0.0 : quadratic_step(c0, c1, 0.0);
+    const double s = free_flight_root(gap_s_[i], gap_c_[i], 0.0);
     ++counters_.closed_form_predictions;
     if (s <= horizon) set_slot(gap_slot(i), t + s, SlotKind::ContactBegin, i);
     else set_slot(gap_slot(i), kInf, SlotKind::None, i);
