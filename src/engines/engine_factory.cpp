@@ -18,7 +18,7 @@ std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParam
     return std::make_unique<RungeKuttaEngine>(p, initial, floor,
                                               RungeKuttaOptions{choice.dt_factor, choice.name != "reference"});
   }
-  if (choice.name == "exact") return std::make_unique<ExactEngine>(p, initial, floor, choice.audit);
+  if (choice.name == "exact") return std::make_unique<ExactEngine>(p, initial, floor, ExactOptions{.audit = choice.audit});
   if (choice.name == "hard") return std::make_unique<HardSphereEngine>(p, initial, floor, choice.hard);
   throw std::invalid_argument("unknown engine '" + choice.name + "'");
 }

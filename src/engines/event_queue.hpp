@@ -37,10 +37,13 @@ class BasicEventQueue {
     } else if (slot == block_slot_[b]) {  // the block's earliest moved later: scan the block
       const int first = b * kBlock;
       int best = first;
-      for (int s = first + 1; s < first + kBlock; ++s) {
-        if (t_[s] < t_[best]) best = s;
+      Time best_t = t_[first];
+      for (int s = first + 1; s < first + kBlock; ++s) {  // selects, not branches
+        const bool earlier = t_[s] < best_t;
+        best_t = earlier ? t_[s] : best_t;
+        best = earlier ? s : best;
       }
-      block_t_[b] = t_[best];
+      block_t_[b] = best_t;
       block_slot_[b] = best;
     } else {
       return;  // the block's earliest is unchanged
@@ -63,10 +66,13 @@ class BasicEventQueue {
   static constexpr int kBlock = 8;
   void find_next() const {
     int best = 0;
+    Time best_t = block_t_[0];
     for (int b = 1; b < blocks_; ++b) {
-      if (block_t_[b] < block_t_[best]) best = b;
+      const bool earlier = block_t_[b] < best_t;
+      best_t = earlier ? block_t_[b] : best_t;
+      best = earlier ? b : best;
     }
-    next_t_ = block_t_[best];
+    next_t_ = best_t;
     next_slot_ = block_slot_[best];
     stale_ = false;
   }

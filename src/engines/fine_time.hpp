@@ -47,8 +47,10 @@ class FineTime {
 
   friend bool operator==(const FineTime& a, const FineTime& b) { return a.hi_ == b.hi_ && a.lo_ == b.lo_; }
   friend bool operator!=(const FineTime& a, const FineTime& b) { return !(a == b); }
+  // Written with | and & rather than || and &&: no branch on the outcome (event queues compare
+  // times whose order is unpredictable).
   friend bool operator<(const FineTime& a, const FineTime& b) {
-    return a.hi_ < b.hi_ || (a.hi_ == b.hi_ && a.lo_ < b.lo_);
+    return (a.hi_ < b.hi_) | ((a.hi_ == b.hi_) & (a.lo_ < b.lo_));
   }
   friend bool operator>(const FineTime& a, const FineTime& b) { return b < a; }
   friend bool operator<=(const FineTime& a, const FineTime& b) { return !(b < a); }

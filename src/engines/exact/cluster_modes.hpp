@@ -51,6 +51,12 @@ struct ModeConstants {
     const double s = yd * yd + omega0_sq * y * y;
     return s >= kNoUnderflow ? std::sqrt(s) : std::hypot(yd, std::sqrt(omega0_sq) * y);
   }
+  // sqrt(E) / omega0 = sqrt(y^2 + (y' / omega0)^2): it bounds |y| at all later times (the energy
+  // E = y'^2 + omega0^2 y^2 never grows).
+  double energy_amplitude(double y, double yd) const {
+    const double s = yd * yd + omega0_sq * y * y;  // underflows for a cluster at rest within round-off
+    return s >= kNoUnderflow ? std::sqrt(s / omega0_sq) : std::hypot(yd / std::sqrt(omega0_sq), y);
+  }
   static constexpr double kNoUnderflow = 1e-290;  // sums of squares above it lost nothing to underflow
 };
 

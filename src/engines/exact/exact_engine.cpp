@@ -9,8 +9,9 @@
 
 namespace granchain {
 
-ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, bool audit)
-    : audit_(audit),
+ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, ExactOptions options)
+    : shortcuts_(options.pair_shortcuts),
+      audit_(options.audit),
       n_(p.N),
       d_(p.d),
       g_(p.g),
@@ -23,6 +24,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   k_over_m_ = law.k_over_m;
   D_ = law.D;
   tau_c_ = law.tau_c;
+  if (n_ >= 2) pair_table_ = &tables_[2];
   if (n_ >= 2 && tables_[2].modes[0].kind == ModeKind::Under) {
     const ModeConstants& mc = tables_[2].modes[0];
     pair_.tau = std::numbers::pi / mc.w;
@@ -119,12 +121,7 @@ void ExactEngine::form_cluster(int lo, int hi, Time t, const double* x, const do
     tab.to_modes(x, &y0_[lo]);
     tab.to_modes(xd, &yd0_[lo]);
     // sqrt(E_j) / omega0_j >= |y_j| at all later times (the energy never grows).
-    for (int j = 0; j < tab.M; ++j) {
-      const ModeConstants& mc = tab.modes[j];
-      const double y = y0_[lo + j], yd = yd0_[lo + j];
-      const double s = yd * yd + mc.omega0_sq * y * y;  // underflows for a cluster at rest within round-off
-      amp0_[lo + j] = s >= ModeConstants::kNoUnderflow ? std::sqrt(s / mc.omega0_sq) : std::hypot(yd / std::sqrt(mc.omega0_sq), y);
-    }
+    for (int j = 0; j < tab.M; ++j) amp0_[lo + j] = tab.modes[j].energy_amplitude(y0_[lo + j], yd0_[lo + j]);
   }
 }
 
@@ -206,9 +203,9 @@ double ExactEngine::cluster_edge_mode(int lo, bool top, Time t) const {
 }
 
 // u = z_com(t) - z_com(t0) + sum_j c_j y_j(t - t0): particle 1's height up to a constant.
-double ExactEngine::bottom_u(Time t) const {
+double ExactEngine::bottom_u_mode(Time t, double mode) const {
   const double tau = t - t0_[0];
-  return tau * (V0_[0] - 0.5 * g_ * tau) + edge_mode(0, false, t);
+  return tau * (V0_[0] - 0.5 * g_ * tau) + mode;
 }
 
 ExactEngine::EdgeTerm ExactEngine::edge_term(int lo, bool top, double sign, Time t) const {
@@ -223,8 +220,9 @@ double ExactEngine::gap_at(int i, Time t) const {
   return gap_from_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t));
 }
 
-void ExactEngine::sync_gap(int i, Time t) {
-  const double ma = edge_mode(lo_of_[i], true, t), mb = edge_mode(i + 1, false, t);
+void ExactEngine::sync_gap(int i, Time t) { sync_gap_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t)); }
+
+void ExactEngine::sync_gap_edges(int i, Time t, double ma, double mb) {
   gap_s_[i] += gap_c_[i] * (t - gap_t_[i]) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
   gap_t_[i] = t;
   gap_ma_[i] = ma;
@@ -239,8 +237,10 @@ void ExactEngine::rebase_gap(int i, Time t) {
   gap_t_[i] = t;
 }
 
-void ExactEngine::sync_floor(Time t) {
-  const double u = bottom_u(t);
+void ExactEngine::sync_floor(Time t) { sync_floor_mode(t, edge_mode(0, false, t)); }
+
+void ExactEngine::sync_floor_mode(Time t, double mode) {
+  const double u = bottom_u_mode(t, mode);
   floor_s_ += u - floor_u_;
   floor_t_ = t;
   floor_u_ = u;
@@ -447,13 +447,24 @@ void ExactEngine::handle(int slot, EventSink& sink) {
   } else if (slot >= n_) {
     const int i = slot - n_;
     if (s.kind == SlotKind::ContactBegin) {
-      merge(i, t, sink);
+      // Two free particles meeting with a resolvable speed (c != 0): the short path.
+      if (shortcuts_ && lo_of_[i] == i && hi_[i + 1] == i + 1 && pair_.tau > 0 && gap_c_[i] != 0.0) {
+        ++shortcut_events_;
+        merge_free_pair(i, t, sink);
+      } else {
+        merge(i, t, sink);
+      }
     } else {
       sync_gap(i, t);
       predict_gap(i);
     }
   } else if (s.kind == SlotKind::ContactEnd) {
-    split(slot, s.pair, t, s.tau, sink);
+    if (shortcuts_ && is_fresh_pair(slot) && s.tau == pair_.tau) {
+      ++shortcut_events_;
+      split_fresh_pair(slot, t, sink);
+    } else {
+      split(slot, s.pair, t, s.tau, sink);
+    }
   } else if (s.kind == SlotKind::PassThrough) {
     throw UnphysicalStateError(
         t.value(), s.pair + 1, s.pair + 2,

@@ -31,13 +31,20 @@
 
 namespace granchain {
 
+struct ExactOptions {
+  // After every event, evaluate every overlap, gap and the floor height at kAuditInstants random
+  // instants before the next event and count those with the wrong sign (EngineCounters); the
+  // trajectory is the same with and without it.
+  bool audit = false;
+  // Binary contacts of two free particles take the short path of exact_binary.cpp. The trajectory
+  // is the same bit for bit with and without it (tests compare the two).
+  bool pair_shortcuts = true;
+};
+
 class ExactEngine final : public Engine {
  public:
   // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
-  // audit: after every event, evaluate every overlap, gap and the floor height at kAuditInstants
-  // random instants before the next event and count those with the wrong sign (EngineCounters);
-  // the trajectory is the same with and without it.
-  ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, bool audit = false);
+  ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, ExactOptions options = {});
 
   std::string_view name() const override { return "exact"; }
   void advance_to(double t, EventSink& sink) override;
@@ -51,6 +58,8 @@ class ExactEngine final : public Engine {
   // Overlaps x_i = d - (z_{i+1} - z_i) at time() straight from the stored gaps and modes (full
   // relative precision, unlike differences of state().z).
   std::vector<double> overlaps() const;
+  // Events handled by the short paths of exact_binary.cpp (ExactOptions::pair_shortcuts).
+  std::uint64_t shortcut_events() const { return shortcut_events_; }
 
  private:
   using Time = FineTime;  // absolute times; local times (since a reference time) are doubles
@@ -95,6 +104,8 @@ class ExactEngine final : public Engine {
     EdgeTerm term[2];
     int terms = 0;
     bool modes_nonnegative = false;  // every term's mode part is >= 0 up to sigma_max (predict_gap)
+    // sum over the terms of |a_j| sqrt(E_j) / omega0_j (edge_reach): no mode part exceeds it.
+    double reach = 0;
     // Round-off of c0 (a difference of stored heights): values up to this (plus the mode part's
     // round-off) are zero as far as double precision can tell.
     double noise = 0;
@@ -116,7 +127,8 @@ class ExactEngine final : public Engine {
   double edge_mode(int lo, bool top, Time t) const { return hi_[lo] == lo ? 0.0 : cluster_edge_mode(lo, top, t); }
   double cluster_edge_mode(int lo, bool top, Time t) const;  // clusters of two or more
   // Height coordinate of particle 1: centre-of-mass displacement since formation plus mode part.
-  double bottom_u(Time t) const;
+  double bottom_u(Time t) const { return bottom_u_mode(t, edge_mode(0, false, t)); }
+  double bottom_u_mode(Time t, double mode) const;  // the same, given the mode part at t
   EdgeTerm edge_term(int lo, bool top, double sign, Time t) const;
 
   // --- gaps and the floor height, each a value at a reference time ---
@@ -130,8 +142,10 @@ class ExactEngine final : public Engine {
     return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
   }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
+  void sync_gap_edges(int i, Time t, double m_a, double m_b);  // the same, given the edges' mode parts at t
   void rebase_gap(int i, Time t);  // after a neighbour re-formed at t: new mode-part origin
   void sync_floor(Time t);
+  void sync_floor_mode(Time t, double mode);  // the same, given particle 1's mode part at t
   void rebase_floor(Time t);
 
   // --- prediction ---
@@ -152,10 +166,31 @@ class ExactEngine final : public Engine {
   void floor_hit(Time t, EventSink& sink);
   void refresh_cluster(int lo, Time t);
 
+  // --- binary contacts of two free particles (exact_binary.cpp): the same arithmetic as merge
+  // and split, without the cluster machinery ---
+  // A contact begun at zero overlap between two particles: it ends at tau = pi / w.
+  bool is_fresh_pair(int lo) const { return hi_[lo] == lo + 1 && y0_[lo] == 0.0; }
+  void merge_free_pair(int pair, Time t, EventSink& sink);
+  void split_fresh_pair(int lo, Time t, EventSink& sink);
+  // The gap's lower bound c0 - margin * reach + c1 s + p2 s^2 / 2 (first_root) stays positive up
+  // to sigma_max: no event, and no edge function needs building.
+  bool bound_excludes(double c0, double c1, double p2, double reach, bool modes_nonnegative, double sigma_max) const;
+  // sum_j |coef_j| amp0_j of the edge of cluster lo (top or bottom, two or more particles): no
+  // edge mode part exceeds it.
+  double edge_reach(int lo, bool top, double acc) const;  // acc + the sum
+  // c0 - margin * reach: the value at zero of f's lower bound (first_root). The margin is 1e-10
+  // when every mode part is >= 0 (only round-off below zero), else 1.
+  static double bound_at_zero(double c0, double reach, bool modes_nonnegative) {
+    return c0 - (modes_nonnegative ? 1e-10 : 1.0) * reach;
+  }
+  bool shortcuts_ = true;
+  std::uint64_t shortcut_events_ = 0;
+
   // --- audit (exact_audit.cpp) ---
   static constexpr int kAuditInstants = 2;
   void audit_interval(Time a, Time b);
   bool audit_ = false;
+  const ClusterModeTable* pair_table_ = nullptr;  // tables_[2] (N >= 2)
   std::uint64_t audit_draws_ = 0;
 
   // --- schedule: 2N slots (N clusters, N-1 gaps, the floor) in an EventQueue ---
@@ -163,6 +198,13 @@ class ExactEngine final : public Engine {
   int gap_slot(int i) const { return n_ + i; }
   int floor_slot() const { return 2 * n_ - 1; }
   void set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau = 0.0);
+  // A gap or floor slot with no event before `horizon`, the time of a neighbouring cluster's own
+  // event (which re-predicts this slot, and wins a tie as the lower slot): a time the slot holds
+  // from an earlier prediction is left as it is when it is not before the horizon, so it can
+  // never fire; an earlier one is cleared. This saves schedule updates, not physics.
+  void clear_slot_before(int slot, const Time& horizon, int pair) {
+    if (!(slots_[slot].t >= horizon)) set_slot(slot, kInf, SlotKind::None, pair);
+  }
   int next_slot() const { return queue_.next_slot(); }
 
   int n_;

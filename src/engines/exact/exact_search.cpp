@@ -32,6 +32,21 @@ double free_flight_root(double c0, double c1, double p2) {
 
 }  // namespace
 
+double ExactEngine::edge_reach(int lo, bool top, double acc) const {
+  const ClusterModeTable& tab = tables_[cluster_size(lo)];
+  const double* coef = top ? tab.top.data() : tab.bottom.data();
+  for (int j = 0; j < tab.M; ++j) acc += std::abs(coef[j]) * amp0_[lo + j];
+  return acc;
+}
+
+bool ExactEngine::bound_excludes(double c0, double c1, double p2, double reach, bool modes_nonnegative,
+                                 double sigma_max) const {
+  const double lower0 = bound_at_zero(c0, reach, modes_nonnegative);
+  if (!(lower0 > 0) || quadratic_step(lower0, c1, 0.5 * p2) < sigma_max) return false;
+  ++counters_.bound_exclusions;
+  return true;
+}
+
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
   if (fn.terms == 0) {
     const double s = free_flight_root(fn.c0, fn.c1, fn.p2);
@@ -46,13 +61,9 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
   // bounds sigma_max; then W >= 0 up to a margin for overlaps of round-off size below zero
   // (resolution skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of reach.
   // Either way no mode is evaluated, and most gaps next to a cluster end here.
-  double reach = 0.0;
-  for (int k = 0; k < fn.terms; ++k) {
-    const EdgeTerm& term = fn.term[k];
-    for (int j = 0; j < term.table->M; ++j) reach += std::abs(term.coef[j]) * term.amp0[j];
-  }
+  const double reach = fn.reach;
   double sigma = 0.0;
-  const double lower0 = fn.c0 - (fn.modes_nonnegative ? 1e-10 : 1.0) * reach;
+  const double lower0 = bound_at_zero(fn.c0, reach, fn.modes_nonnegative);
   const double noise = fn.noise + 8 * std::numeric_limits<double>::epsilon() * reach;
   if (lower0 > 0) {
     const double clear = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
@@ -347,7 +358,17 @@ void ExactEngine::predict_gap(int i) {
   // Valid until either neighbour changes on its own (its internal event or refresh); any other
   // change of a neighbour re-predicts this gap.
   const Time horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
+  // The lower bound of first_root first, without building the edge function: most gaps next to a
+  // cluster end here. Reach summed in first_root's order (b's bottom, then a's top).
+  const bool modes_nonnegative = !has_holds(a) && !has_holds(b);
+  double reach = cluster_size(b) >= 2 ? edge_reach(b, false, 0.0) : 0.0;
+  if (cluster_size(a) >= 2) reach = edge_reach(a, true, reach);
+  if (bound_excludes(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, modes_nonnegative, horizon - t)) {
+    clear_slot_before(gap_slot(i), horizon, i);
+    return;
+  }
   EdgeFunction fn;
+  fn.reach = reach;
   // f(s) = gap(t) + c s + [m_b(t+s) - m_b(t)] - [m_a(t+s) - m_a(t)] (gap_at): a line, since
   // gravity cancels between the centres of mass, plus the mode parts.
   fn.c1 = gap_c_[i];
@@ -357,7 +378,7 @@ void ExactEngine::predict_gap(int i) {
   if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
   // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
   // z_bottom - z_com = const + sum_i x_i (n-1-i)/n. Both mode parts enter f with weights >= 0.
-  fn.modes_nonnegative = !has_holds(a) && !has_holds(b);
+  fn.modes_nonnegative = modes_nonnegative;
   const Root r = first_root(fn, horizon - t);
   switch (r.kind) {
     case Root::Found: set_slot(gap_slot(i), t + r.sigma, SlotKind::ContactBegin, i); break;
@@ -380,9 +401,17 @@ void ExactEngine::predict_floor() {
   fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
   fn.noise = 8 * std::numeric_limits<double>::epsilon() *
              (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
-  if (cluster_size(0) >= 2) fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
   fn.modes_nonnegative = !has_holds(0);
-  const Root r = first_root(fn, slots_[cluster_slot(0)].t - t);
+  const double sigma_max = slots_[cluster_slot(0)].t - t;
+  if (cluster_size(0) >= 2) {
+    fn.reach = edge_reach(0, false, 0.0);
+    if (bound_excludes(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative, sigma_max)) {
+      clear_slot_before(floor_slot(), slots_[cluster_slot(0)].t, 0);
+      return;
+    }
+    fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
+  }
+  const Root r = first_root(fn, sigma_max);
   switch (r.kind) {
     case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;
     case Root::Refresh: set_slot(floor_slot(), t + r.sigma, SlotKind::Refresh, 0); break;

@@ -1,0 +1,94 @@
+// Binary contacts of two free particles, the commonest event of a dilute column: two single
+// particles meet at zero overlap, form a pair whose one mode (lambda = 2) starts at y = 0 with
+// rate y' = x'(0) > 0, and part at tau = pi / w = tau_c (Eq. tauc) with y = 0 and y' = -e y'(0)
+// (Eq. Dd); the centre of mass flies on in free fall throughout. merge and split handle these with
+// the cluster machinery (mode projections, relative velocities, edge mode parts); here the same
+// quantities are written out for n = 2, where S = (1), the bottom edge's mode part is y/2 and the
+// top one's -y/2, and every one of them is zero at both ends of the contact. Each step below is
+// the same floating-point operation as in merge and split, so the trajectory is the same bit for
+// bit (ExactOptions::pair_shortcuts, and the test that compares the two).
+#include <cmath>
+
+#include "engines/exact/exact_engine.hpp"
+
+namespace granchain {
+
+// The gap between the single particles a = pair and b = pair + 1 closes with rate c = gap_c < 0.
+void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
+  const int a = pair, b = pair + 1;
+  if (a > 0) sync_gap(a - 1, t);
+  if (b + 1 < n_) sync_gap(b, t);
+  if (a == 0) sync_floor(t);
+  // merge: the overlap's rate is -(c + u_b - u_a), u = 0 for single particles; the pair's centre
+  // of mass moves at V_a + c / 2.
+  const double c = gap_c_[pair];
+  const double speed = std::abs(c);
+  const double dVa = c * 1 / 2, dVb = dVa - c;
+  const double V = com_velocity(a, t) + dVa;
+  hi_[a] = b;
+  lo_of_[b] = a;
+  t0_[a] = t;
+  search_from_[a] = 0.0;
+  V0_[a] = V;
+  generation_[a] = ++formations_;
+  y0_[a] = 0.0 + pair_table_->S[0] * 0.0;  // y = S^T x (to_modes)
+  yd0_[a] = 0.0 + pair_table_->S[0] * -c;
+  amp0_[a] = pair_table_->modes[0].energy_amplitude(y0_[a], yd0_[a]);
+  if (a > 0) gap_c_[a - 1] += dVa;
+  if (b + 1 < n_) gap_c_[b] -= dVb;
+  grazing_streak_[pair] = 0;  // a resolvable contact: merge's non-grazing branch
+  hold_until_[pair] = -kInf;
+  set_slot(cluster_slot(b), kInf, SlotKind::None, b);
+  set_slot(gap_slot(pair), kInf, SlotKind::None, pair);
+  // rebase_gap and rebase_floor: the pair's edge mode parts are zero at its formation.
+  if (a > 0) {
+    if (t0_[lo_of_[a - 1]] == t) gap_ma_[a - 1] = edge_mode(lo_of_[a - 1], true, t);
+    gap_mb_[a - 1] = 0.0;
+  }
+  if (b + 1 < n_) {
+    gap_ma_[b] = 0.0;
+    if (t0_[b + 1] == t) gap_mb_[b] = edge_mode(b + 1, false, t);
+  }
+  if (a == 0) {
+    floor_t_ = t;
+    floor_u_ = bottom_u_mode(t, 0.0);
+  }
+  sink.on_event({EventKind::ContactBegin, t.value(), pair, speed, t.low()});
+  predict_cluster(a);
+  if (a > 0) predict_gap(a - 1);
+  if (b + 1 < n_) predict_gap(b);
+  if (a == 0) predict_floor();
+}
+
+// The pair lo, lo + 1, begun at zero overlap, parts at its own time pi / w.
+void ExactEngine::split_fresh_pair(int lo, Time t, EventSink& sink) {
+  const int hi = lo + 1, pair = lo;
+  // modes_at and cluster_relative: y = 0, y' = -e y'(0); x' = S y'; u = (x'/2, -x'/2).
+  const double xd = 0.0 + pair_table_->S[0] * (-pair_.restitution * yd0_[lo]);
+  if (lo > 0) sync_gap_edges(lo - 1, t, edge_mode(lo_of_[lo - 1], true, t), 0.0);
+  if (hi + 1 < n_) sync_gap_edges(hi, t, 0.0, edge_mode(hi + 1, false, t));
+  if (lo == 0) sync_floor_mode(t, 0.0);
+  const double speed = std::abs(xd);
+  const double u_lower = xd / 2, u_upper = -xd / 2;
+  const double V = V0_[lo] - g_ * pair_.tau;
+  form_cluster(lo, lo, t, nullptr, nullptr, V + u_lower);
+  form_cluster(hi, hi, t, nullptr, nullptr, V + u_upper);
+  gap_s_[pair] = 0.0;
+  gap_c_[pair] = u_upper - u_lower;
+  if (lo > 0) gap_c_[lo - 1] += u_lower;
+  if (hi + 1 < n_) gap_c_[hi] -= u_upper;
+  if (lo > 0) rebase_gap(lo - 1, t);
+  rebase_gap(pair, t);
+  if (hi + 1 < n_) rebase_gap(hi, t);
+  if (lo == 0) rebase_floor(t);
+  ++counters_.contact_ends;
+  sink.on_event({EventKind::ContactEnd, t.value(), pair, speed, t.low()});
+  set_slot(cluster_slot(lo), kInf, SlotKind::None, lo);  // predict_cluster of single particles
+  set_slot(cluster_slot(hi), kInf, SlotKind::None, hi);
+  if (lo > 0) predict_gap(lo - 1);
+  predict_gap(pair);
+  if (hi + 1 < n_) predict_gap(hi);
+  if (lo == 0) predict_floor();
+}
+
+}  // namespace granchain
