@@ -1,5 +1,7 @@
 #include "engines/hard_sphere_engine.hpp"
 
+#include "engines/free_flight.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -80,26 +82,16 @@ void HardSphereEngine::sync_floor(double t) {
   floor_t_ = t;
 }
 
-// Gap i closes when s + r (t - t_i) = 0 with r = v_{i+1} - v_i < 0.
+// Gap i closes when s + r (t - t_i) = 0 with r = v_{i+1} - v_i < 0 (free_flight.hpp).
 void HardSphereEngine::predict_gap(int i) {
-  const double r = rel_[i];
-  const double t = r < 0 ? std::max(now_, gap_t_[i] + gap_s_[i] / -r) : kNever;
-  queue_.set(i, t);
+  const double s = free_flight::first_root(gap_s_[i], rel_[i], 0.0);
+  queue_.set(i, s == kNever ? kNever : std::max(now_, gap_t_[i] + s));
 }
 
-// Particle 1 reaches the floor when h + w tau - g tau^2 / 2 = 0 (w its velocity at floor_t_): the
-// positive root, in the form without cancellation for either sign of w.
+// Particle 1 reaches the floor when h + w tau - g tau^2 / 2 = 0 (w its velocity at floor_t_).
 void HardSphereEngine::predict_floor() {
   if (floor_ == nullptr) return;
-  const double h = floor_h_;
-  const double w = velocity(0, floor_t_);
-  double tau = kNever;
-  if (g_ > 0) {
-    const double root = std::sqrt(w * w + 2.0 * g_ * h);
-    tau = w > 0 ? (w + root) / g_ : (root - w > 0 ? 2.0 * h / (root - w) : 0.0);
-  } else if (w < 0) {
-    tau = h / -w;
-  }
+  const double tau = free_flight::first_root(floor_h_, velocity(0, floor_t_), -g_);
   queue_.set(n_ - 1, tau == kNever ? kNever : std::max(now_, floor_t_ + tau));
 }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "engines/exact/taylor_bounds.hpp"
+#include "engines/free_flight.hpp"
 
 namespace granchain {
 
@@ -20,17 +21,6 @@ using taylor::P;
 
 // ----------------------------------------------------------------------------------------------
 // Prediction
-
-namespace {
-
-// Free flight: the first root of c0 + c1 s + p2 s^2 / 2 (a line or a parabola), in closed form.
-// A gap that is zero with no relative velocity and no relative acceleration (two free spheres
-// touching at equal velocities, in free space) stays zero: no force acts, no contact begins.
-double free_flight_root(double c0, double c1, double p2) {
-  return c0 <= 0 && (c1 < 0 || (c1 == 0 && p2 < 0)) ? 0.0 : quadratic_step(c0, c1, 0.5 * p2);
-}
-
-}  // namespace
 
 double ExactEngine::edge_reach(int lo, bool top, double acc) const {
   const ClusterModeTable& tab = tables_[cluster_size(lo)];
@@ -49,7 +39,7 @@ bool ExactEngine::bound_excludes(double c0, double c1, double p2, double reach, 
 
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
   if (fn.terms == 0) {
-    const double s = free_flight_root(fn.c0, fn.c1, fn.p2);
+    const double s = free_flight::first_root(fn.c0, fn.c1, fn.p2);
     ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
@@ -349,7 +339,7 @@ void ExactEngine::predict_gap(int i) {
   const Time t = gap_t_[i];
   if (a == i && hi_[b] == b) {  // two free particles: a line, no edge function to build
     const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t) - t;
-    const double s = free_flight_root(gap_s_[i], gap_c_[i], 0.0);
+    const double s = free_flight::first_root(gap_s_[i], gap_c_[i], 0.0);
     ++counters_.closed_form_predictions;
     if (s <= horizon) set_slot(gap_slot(i), t + s, SlotKind::ContactBegin, i);
     else set_slot(gap_slot(i), kInf, SlotKind::None, i);

@@ -7,19 +7,14 @@
 #include <limits>
 
 #include "engines/exact/cluster_modes.hpp"
+#include "engines/free_flight.hpp"
 
 namespace granchain::taylor {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// First positive root of f + f1 h + a h^2 with a <= 0 and f >= 0 (+inf if there is none): the
-// longest step over which a quadratic lower bound of the watched function stays positive.
-inline double quadratic_step(double f, double f1, double a) {
-  if (f < 0) f = 0;
-  if (a >= 0) return f1 < 0 ? f / -f1 : kInf;
-  const double disc = std::sqrt(f1 * f1 - 4.0 * a * f);  // >= |f1|
-  return f1 >= 0 ? (f1 + disc) / (-2.0 * a) : 2.0 * f / (disc - f1);
-}
+// The quadratic lower bound's first root (free_flight.hpp).
+using free_flight::quadratic_step;
 
 inline constexpr int P = kTaylorOrder;
 
