@@ -62,7 +62,7 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
 
 // The pair lo, lo + 1, begun at zero overlap, parts at its own time pi / w.
 void ExactEngine::split_fresh_pair(int lo, Time t, EventSink& sink) {
-  const int hi = lo + 1, pair = lo;
+  const int hi = lo + 1;
   // modes_at and cluster_relative: y = 0, y' = -e y'(0); x' = S y'; u = (x'/2, -x'/2).
   const double xd = 0.0 + pair_table_->S[0] * (-pair_.restitution * yd0_[lo]);
   if (lo > 0) sync_gap_edges(lo - 1, t, edge_mode(lo_of_[lo - 1], true, t), 0.0);
@@ -70,25 +70,7 @@ void ExactEngine::split_fresh_pair(int lo, Time t, EventSink& sink) {
   if (lo == 0) sync_floor_mode(t, 0.0);
   const double speed = std::abs(xd);
   const double u_lower = xd / 2, u_upper = -xd / 2;
-  const double V = V0_[lo] - g_ * pair_.tau;
-  form_cluster(lo, lo, t, nullptr, nullptr, V + u_lower);
-  form_cluster(hi, hi, t, nullptr, nullptr, V + u_upper);
-  gap_s_[pair] = 0.0;
-  gap_c_[pair] = u_upper - u_lower;
-  if (lo > 0) gap_c_[lo - 1] += u_lower;
-  if (hi + 1 < n_) gap_c_[hi] -= u_upper;
-  if (lo > 0) rebase_gap(lo - 1, t);
-  rebase_gap(pair, t);
-  if (hi + 1 < n_) rebase_gap(hi, t);
-  if (lo == 0) rebase_floor(t);
-  ++counters_.contact_ends;
-  sink.on_event({EventKind::ContactEnd, t.value(), pair, speed, t.low()});
-  set_slot(cluster_slot(lo), kInf, SlotKind::None, lo);  // predict_cluster of single particles
-  set_slot(cluster_slot(hi), kInf, SlotKind::None, hi);
-  if (lo > 0) predict_gap(lo - 1);
-  predict_gap(pair);
-  if (hi + 1 < n_) predict_gap(hi);
-  if (lo == 0) predict_floor();
+  part(lo, lo, hi, t, nullptr, nullptr, V0_[lo] - g_ * pair_.tau, u_lower, u_upper, speed, sink);
 }
 
 }  // namespace granchain

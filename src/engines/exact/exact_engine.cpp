@@ -287,9 +287,14 @@ void ExactEngine::split(int lo, int pair, Time t, double tau, EventSink& sink) {
   for (int p = n_lower; p < n_lower + n_upper; ++p) u_upper += u[p];
   u_lower /= n_lower;
   u_upper /= n_upper;
-  const double V = V0_[lo] - g_ * tau;
+  part(lo, pair, hi, t, x, xd, V0_[lo] - g_ * tau, u_lower, u_upper, speed, sink);
+}
+
+void ExactEngine::part(int lo, int pair, int hi, Time t, const double* x, const double* xd, double V, double u_lower,
+                       double u_upper, double speed, EventSink& sink) {
+  const int r = pair - lo;
   form_cluster(lo, pair, t, x, xd, V + u_lower);
-  form_cluster(pair + 1, hi, t, x + r + 1, xd + r + 1, V + u_upper);
+  form_cluster(pair + 1, hi, t, x == nullptr ? nullptr : x + r + 1, xd == nullptr ? nullptr : xd + r + 1, V + u_upper);
   gap_s_[pair] = 0.0;  // the overlap has just returned to zero
   gap_c_[pair] = u_upper - u_lower;
   if (lo > 0) gap_c_[lo - 1] += u_lower;

@@ -162,6 +162,11 @@ class ExactEngine final : public Engine {
   // --- events ---
   void handle(int slot, EventSink& sink);
   void split(int lo, int pair, Time t, double tau, EventSink& sink);
+  // The end of split: the two parts formed at t from their overlaps x, xd (null for single
+  // particles), the old centre of mass's velocity V and the parts' centre-of-mass velocities
+  // relative to it; gaps and the floor rebased, the event reported, everything re-predicted.
+  void part(int lo, int pair, int hi, Time t, const double* x, const double* xd, double V, double u_lower, double u_upper,
+            double speed, EventSink& sink);
   void merge(int pair, Time t, EventSink& sink);
   void floor_hit(Time t, EventSink& sink);
   void refresh_cluster(int lo, Time t);
