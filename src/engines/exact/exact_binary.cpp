@@ -54,9 +54,28 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
     floor_u_ = bottom_u_mode(t, 0.0);
   }
   sink.on_event({EventKind::ContactBegin, t.value(), pair, speed, t.low()});
-  predict_cluster(a);
-  if (a > 0) predict_gap(a - 1);
-  if (b + 1 < n_) predict_gap(b);
+  // predict_cluster: the pair's end in closed form (pair_contact_end: y0 = 0, y' > 0) unless an
+  // overlap could reach d.
+  if (pair_table_->s_max * (0.0 + amp0_[a]) < d_ && yd0_[a] > 0) {
+    ++counters_.closed_form_predictions;
+    set_slot(cluster_slot(a), t + pair_.tau, SlotKind::ContactEnd, a, pair_.tau);
+  } else {
+    predict_cluster(a);
+  }
+  // predict_gap next to the pair and a single particle: no holds on either side, and the pair's
+  // edge reaches |1/2| amp0 (edge_reach) in either direction.
+  const Time horizon = slots_[cluster_slot(a)].t;  // the single particle's slot is never earlier
+  const double reach = 0.0 + 0.5 * amp0_[a];
+  auto predict_outer = [&](int i, bool single_beyond) {
+    if (single_beyond &&
+        bound_excludes(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, true, horizon - t)) {
+      clear_slot_before(gap_slot(i), horizon, i);
+    } else {
+      predict_gap(i);
+    }
+  };
+  if (a > 0) predict_outer(a - 1, lo_of_[a - 1] == a - 1);
+  if (b + 1 < n_) predict_outer(b, hi_[b + 1] == b + 1);
   if (a == 0) predict_floor();
 }
 
