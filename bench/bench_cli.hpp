@@ -3,6 +3,7 @@
 // parameter and its valid range and exit code 2, as granchain does.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <fmt/format.h>
 #include <functional>
 #include <optional>
@@ -26,6 +27,23 @@ inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv, co
     return 2;
   }
   return std::nullopt;
+}
+
+// --repeat R of the micro-benchmarks: every timing is repeated R times and the fastest kept.
+inline void add_repeat_option(CLI::App& app, int& repeat) {
+  app.add_option("--repeat", repeat, "time every case this many times and keep the fastest")->check(CLI::Range(1, 100));
+}
+
+// Nanoseconds per call of body(c) over c = 0 .. calls - 1, the fastest of `repeat` timings.
+template <class Body>
+double fastest_ns_per_call(int repeat, int calls, Body&& body) {
+  double best = 1e300;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int c = 0; c < calls; ++c) body(c);
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls);
+  }
+  return 1e9 * best;
 }
 
 }  // namespace granchain::bench

@@ -8,7 +8,6 @@
 //   build/bench/propagator_speed [--repeat R]
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <vector>
@@ -23,7 +22,7 @@ using namespace granchain;
 int main(int argc, char** argv) {
   CLI::App app{"granchain: a cluster's overlaps one step on, fixed-step propagator against closed-form modes, ns per step"};
   int repeat = 5;
-  app.add_option("--repeat", repeat, "time every size this many times and keep the fastest")->check(CLI::Range(1, 100));
+  bench::add_repeat_option(app, repeat);
   if (const auto code = bench::parse_or_exit(app, argc, argv, "propagator_speed")) return *code;
   fmt::print("{:>5} {:>5} {:>5} {:>12} {:>14} {:>7}\n", "e", "n", "band", "fixed ns", "closed-form ns", "ratio");
   for (double e : {0.1, 0.5, 0.9}) {
@@ -43,16 +42,10 @@ int main(int argc, char** argv) {
       const int calls = std::max(100, 2000000 / (M * 40));
       volatile double sink = 0;
       auto time = [&](auto step) {
-        double best = 1e300;
-        for (int r = 0; r < repeat; ++r) {
-          const auto t0 = std::chrono::steady_clock::now();
-          for (int c = 0; c < calls; ++c) {
-            step(c);
-            sink = sink + x2[M / 2];
-          }
-          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls);
-        }
-        return 1e9 * best;
+        return bench::fastest_ns_per_call(repeat, calls, [&](int c) {
+          step(c);
+          sink = sink + x2[M / 2];
+        });
       };
       const double fixed = time([&](int) {
         prop.advance(n, x.data(), xd.data(), x2.data(), xd2.data());

@@ -5,7 +5,6 @@
 //   build/bench/transform_speed [--repeat R]
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <vector>
@@ -19,7 +18,7 @@ using namespace granchain;
 int main(int argc, char** argv) {
   CLI::App app{"granchain: dense sine product against FFTW's sine transform, ns per projection"};
   int repeat = 5;
-  app.add_option("--repeat", repeat, "time every size this many times and keep the fastest")->check(CLI::Range(1, 100));
+  bench::add_repeat_option(app, repeat);
   if (const auto code = bench::parse_or_exit(app, argc, argv, "transform_speed")) return *code;
   fmt::print("{:>5} {:>5} {:>10} {:>10} {:>7}  {}\n", "n", "M", "dense ns", "FFTW ns", "ratio", "engine uses");
   for (int n : {8, 16, 24, 25, 31, 32, 37, 48, 64, 73, 100, 101, 128, 149, 150}) {
@@ -32,17 +31,11 @@ int main(int argc, char** argv) {
     const int calls = std::max(200, 4000000 / (M * M));
     volatile double sink = 0;  // keeps the products from being optimised away
     auto time = [&](auto project) {
-      double best = 1e300;
-      for (int r = 0; r < repeat; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int c = 0; c < calls; ++c) {
-          y[c % M] += 1e-12;
-          project();
-          sink = sink + x[M / 2];
-        }
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / calls);
-      }
-      return 1e9 * best;
+      return bench::fastest_ns_per_call(repeat, calls, [&](int c) {
+        y[c % M] += 1e-12;
+        project();
+        sink = sink + x[M / 2];
+      });
     };
     const double dense = time([&] { table.to_overlaps(y.data(), x.data()); });
     const double fftw = time([&] { fast.apply(y.data(), x.data()); });
