@@ -49,21 +49,23 @@ ChainPropagator::ChainPropagator(double k_over_m, double D, double h) : h_(h) {
       for (int a = 0; a < 4; ++a) K[a][l] += phi[a] * c;
     }
   }
+  // x and h x' on one scale: entry 12 times 1/h, entry 21 times h.
+  auto scaled = [&](int a, int l) {
+    const long double scale = a == 1 ? 1 / static_cast<long double>(h) : a == 2 ? h : 1;
+    return std::fabs(K[a][l] * scale);
+  };
   long double largest = 0;
   for (int a = 0; a < 4; ++a) {
     for (int l = 0; l <= kMaxBand; ++l) {
       K[a][l] /= kQuadrature;
-      // x and h x' on one scale: entry 12 times 1/h, entry 21 times h.
-      const long double scale = a == 1 ? 1 / static_cast<long double>(h) : a == 2 ? h : 1;
-      largest = std::max(largest, std::fabs(K[a][l] * scale));
+      largest = std::max(largest, scaled(a, l));
     }
   }
   // The band: the last l at which some scaled entry is above 2^-60 of the largest.
   b_ = 0;
   for (int l = 0; l <= kMaxBand; ++l) {
     for (int a = 0; a < 4; ++a) {
-      const long double scale = a == 1 ? 1 / static_cast<long double>(h) : a == 2 ? h : 1;
-      if (std::fabs(K[a][l] * scale) > std::ldexp(largest, -60)) b_ = l;
+      if (scaled(a, l) > std::ldexp(largest, -60)) b_ = l;
     }
   }
   if (b_ >= kMaxBand) throw std::invalid_argument("ChainPropagator: the kernel does not decay within 64 sites (step too long)");

@@ -68,7 +68,7 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
   const double reach = 0.0 + 0.5 * amp0_[a];
   auto predict_outer = [&](int i, bool single_beyond) {
     if (single_beyond &&
-        bound_excludes(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, true, horizon - t)) {
+        bound_excludes(bound_clear(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, true), horizon - t)) {
       clear_slot_before(gap_slot(i), horizon, i);
     } else {
       predict_gap(i);

@@ -155,7 +155,8 @@ class ExactEngine final : public Engine {
   // sqrt(2/n) sum_j sqrt(E_j) / omega0_j: no overlap of cluster lo exceeds it at any later time.
   double overlap_reach(int lo) const;
   void predict_floor();
-  Root first_root(const EdgeFunction& f, double sigma_max) const;
+  // The first root of f in [sigma0, sigma_max]; f is known positive before sigma0 (bound_clear).
+  Root first_root(const EdgeFunction& f, double sigma_max, double sigma0) const;
   Root first_internal_root(int lo, bool watch_pass_through) const;
   double pair_contact_end(int lo) const;  // two-particle cluster: closed form
 
@@ -177,9 +178,15 @@ class ExactEngine final : public Engine {
   bool is_fresh_pair(int lo) const { return hi_[lo] == lo + 1 && y0_[lo] == 0.0; }
   void merge_free_pair(int pair, Time t, EventSink& sink);
   void split_fresh_pair(int lo, Time t, EventSink& sink);
-  // The gap's lower bound c0 - margin * reach + c1 s + p2 s^2 / 2 (first_root) stays positive up
-  // to sigma_max: no event, and no edge function needs building.
-  bool bound_excludes(double c0, double c1, double p2, double reach, bool modes_nonnegative, double sigma_max) const;
+  // How far a gap's or the floor height's lower bound c0 - margin * reach + c1 s + p2 s^2 / 2
+  // provably stays positive (0 when it is not positive at s = 0).
+  double bound_clear(double c0, double c1, double p2, double reach, bool modes_nonnegative) const;
+  // That span reaches sigma_max: no event, and no edge function needs building (counted).
+  bool bound_excludes(double clear, double sigma_max) const {
+    if (!(clear > 0) || clear < sigma_max) return false;
+    ++counters_.bound_exclusions;
+    return true;
+  }
   // sum_j |coef_j| amp0_j of the edge of cluster lo (top or bottom, two or more particles): no
   // edge mode part exceeds it.
   double edge_reach(int lo, bool top, double acc) const;  // acc + the sum
@@ -195,7 +202,6 @@ class ExactEngine final : public Engine {
   static constexpr int kAuditInstants = 2;
   void audit_interval(Time a, Time b);
   bool audit_ = false;
-  const ClusterModeTable* pair_table_ = nullptr;  // tables_[2] (N >= 2)
   std::uint64_t audit_draws_ = 0;
 
   // --- schedule: 2N slots (N clusters, N-1 gaps, the floor) in an EventQueue ---
@@ -267,6 +273,7 @@ class ExactEngine final : public Engine {
   struct PairContact {
     double tau = -1.0, restitution = 0.0;
   } pair_;
+  const ClusterModeTable* pair_table_ = nullptr;  // tables_[2] (N >= 2)
 };
 
 }  // namespace granchain

@@ -29,40 +29,27 @@ double ExactEngine::edge_reach(int lo, bool top, double acc) const {
   return acc;
 }
 
-bool ExactEngine::bound_excludes(double c0, double c1, double p2, double reach, bool modes_nonnegative,
-                                 double sigma_max) const {
+// The mode part W(s) of a gap or of the floor height never exceeds reach = sum_j |a_j| sqrt(E_j) /
+// omega0_j in size (each mode's energy never grows), so f(s) >= c0 - reach + c1 s + p2 s^2 / 2: no
+// root before that parabola's first root. Better still, compression only pulls a cluster's edge
+// particle towards its centre of mass: when no pair is held, W is a non-negative combination of
+// the cluster's overlaps (predict_gap), and every overlap stays >= 0 until the cluster's own next
+// event, which bounds the search; then W >= 0 up to a margin for overlaps of round-off size below
+// zero (resolution skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of reach.
+// Either way no mode is evaluated, and most gaps next to a cluster end here.
+double ExactEngine::bound_clear(double c0, double c1, double p2, double reach, bool modes_nonnegative) const {
   const double lower0 = bound_at_zero(c0, reach, modes_nonnegative);
-  if (!(lower0 > 0) || quadratic_step(lower0, c1, 0.5 * p2) < sigma_max) return false;
-  ++counters_.bound_exclusions;
-  return true;
+  return lower0 > 0 ? quadratic_step(lower0, c1, 0.5 * p2) : 0.0;
 }
 
-ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max) const {
+ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max, double sigma0) const {
   if (fn.terms == 0) {
     const double s = free_flight::first_root(fn.c0, fn.c1, fn.p2);
     ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
-  // The mode part W(s) of f never exceeds reach = sum_j |a_j| sqrt(E_j) / omega0_j in size (each
-  // mode's energy never grows), so f(s) >= c0 - reach + c1 s + p2 s^2 / 2: no root before that
-  // parabola's first root. Better still, compression only pulls a cluster's edge particle towards
-  // its centre of mass: when no pair is held, W is a non-negative combination of the cluster's
-  // overlaps (predict_gap), and every overlap stays >= 0 until the cluster's own next event, which
-  // bounds sigma_max; then W >= 0 up to a margin for overlaps of round-off size below zero
-  // (resolution skips, grazing contacts searched from 1e-6 tau_c), far below 1e-10 of reach.
-  // Either way no mode is evaluated, and most gaps next to a cluster end here.
-  const double reach = fn.reach;
-  double sigma = 0.0;
-  const double lower0 = bound_at_zero(fn.c0, reach, fn.modes_nonnegative);
-  const double noise = fn.noise + 8 * std::numeric_limits<double>::epsilon() * reach;
-  if (lower0 > 0) {
-    const double clear = quadratic_step(lower0, fn.c1, 0.5 * fn.p2);
-    if (clear >= sigma_max) {
-      ++counters_.bound_exclusions;
-      return {Root::None, sigma_max, 0};
-    }
-    sigma = clear;
-  }
+  double sigma = sigma0;
+  const double noise = fn.noise + 8 * std::numeric_limits<double>::epsilon() * fn.reach;
   ++counters_.edge_searches;
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
@@ -353,7 +340,8 @@ void ExactEngine::predict_gap(int i) {
   const bool modes_nonnegative = !has_holds(a) && !has_holds(b);
   double reach = cluster_size(b) >= 2 ? edge_reach(b, false, 0.0) : 0.0;
   if (cluster_size(a) >= 2) reach = edge_reach(a, true, reach);
-  if (bound_excludes(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, modes_nonnegative, horizon - t)) {
+  const double clear = bound_clear(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, modes_nonnegative);
+  if (bound_excludes(clear, horizon - t)) {
     clear_slot_before(gap_slot(i), horizon, i);
     return;
   }
@@ -369,7 +357,7 @@ void ExactEngine::predict_gap(int i) {
   // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
   // z_bottom - z_com = const + sum_i x_i (n-1-i)/n. Both mode parts enter f with weights >= 0.
   fn.modes_nonnegative = modes_nonnegative;
-  const Root r = first_root(fn, horizon - t);
+  const Root r = first_root(fn, horizon - t, clear);
   switch (r.kind) {
     case Root::Found: set_slot(gap_slot(i), t + r.sigma, SlotKind::ContactBegin, i); break;
     case Root::Refresh: set_slot(gap_slot(i), t + r.sigma, SlotKind::Refresh, i); break;
@@ -393,15 +381,17 @@ void ExactEngine::predict_floor() {
              (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
   fn.modes_nonnegative = !has_holds(0);
   const double sigma_max = slots_[cluster_slot(0)].t - t;
+  double clear = 0.0;
   if (cluster_size(0) >= 2) {
     fn.reach = edge_reach(0, false, 0.0);
-    if (bound_excludes(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative, sigma_max)) {
+    clear = bound_clear(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative);
+    if (bound_excludes(clear, sigma_max)) {
       clear_slot_before(floor_slot(), slots_[cluster_slot(0)].t, 0);
       return;
     }
     fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
   }
-  const Root r = first_root(fn, sigma_max);
+  const Root r = first_root(fn, sigma_max, clear);
   switch (r.kind) {
     case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;
     case Root::Refresh: set_slot(floor_slot(), t + r.sigma, SlotKind::Refresh, 0); break;
