@@ -1,12 +1,13 @@
 // Exact event-driven engine against the reference Runge-Kutta engine on the same work, in one
 // invocation. The N = 25 workloads are the driven column of the paper (thermal floor) run through
 // run_driven_column, the code path of `granchain run`, so both engines do the same sampling and
-// observation; the large columns (N = 150, e = 0.1) time the engines alone on a settled column.
+// observation; the settled columns (N = 150 at e = 0.1, N = 40 and 100 at k = 1e10) time the
+// engines alone.
 // The ratio is reference wall time / exact wall time.
 //
 //   build/bench/engine_speed            # full: the k = 1e8 reference runs take ~10 s each
 //   build/bench/engine_speed --quick    # every N = 25 reference time extrapolated from a short run
-//   build/bench/engine_speed --skip-large  # without the N = 150 columns (about 2 minutes)
+//   build/bench/engine_speed --skip-large  # without the settled columns (about 4 minutes)
 //   build/bench/engine_speed --free-space  # also free-space collapses at N = 25 (up to 20 minutes)
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -82,8 +83,8 @@ EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   return {1e9 * wall / collisions, static_cast<double>(c.search_steps) / collisions, c, collisions};
 }
 
-// A settled large column (paper Sec. III.C: N = 150, e = 0.1, the power-law regime): the exact
-// engine runs the transient [0, settle], and from its state at `settle` both engines run the
+// A settled column: the exact engine runs the transient [0, settle], and from its state at
+// `settle` both engines run the
 // window, the exact one for `window`, the reference for `ref_window` (its wall time scaled to
 // `window`: its cost is a fixed number of steps per unit time). Engines alone, no observers.
 struct LargeColumn {
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
   app.add_flag("--free-space", free_space,
                "also time free-space collapses, N = 25, e = 0.3, 200 launches at k = 1e8 and 1e10 (exact engine; "
                "up to 20 minutes)");
-  app.add_flag("--skip-large", skip_large, "leave out the large columns (N = 150, about 2 minutes)");
+  app.add_flag("--skip-large", skip_large, "leave out the settled columns (N = 40, 100, 150; about 4 minutes)");
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
   if (const auto code = bench::parse_or_exit(app, argc, argv, "engine_speed", [&] {
@@ -232,22 +233,31 @@ int main(int argc, char** argv) {
     }
   }
   if (skip_large) return 0;
-  // Large columns: one timing each (the transient alone takes minutes at k = 1e10).
-  const int N = 150;
-  const double e = 0.1, settle = 45.0, window = 5.0;
-  fmt::print("\nN = {} driven column, e = {}, kT0 = 1, seed {}: transient [0, {}] with the exact engine, then both engines "
+  // Settled columns: one timing each (the transient alone takes minutes at k = 1e10). The N = 150
+  // column at e = 0.1 (paper Sec. III.C, the power-law regime) over three decades of k, and the
+  // condensed N = 40 (e = 0.1) and N = 100 (e = 0.2) columns at k = 1e10.
+  struct Settled {
+    int N;
+    double e;
+    LargeColumn w;
+  };
+  const double settle = 45.0, window = 5.0;
+  fmt::print("\nsettled driven columns, kT0 = 1, seed {}: transient [0, {}] with the exact engine, then both engines "
              "from its state over a window of {} (engines alone, one timing)\n",
-             N, e, seed, settle, window);
-  fmt::print("{:>6} | {:>8} {:>10} {:>10} {:>9} | {:>9} {:>12} {:>9} | {:>9} {:>8} {:>8}\n", "k", "exact s", "events",
-             "collisions", "us/event", "ref s", "ref window", "us/event", "ratio", "cl.steps", "edge");
-  for (const LargeColumn& w : {LargeColumn{1e6, 5.0}, LargeColumn{1e8, 0.5}, LargeColumn{1e10, 0.05}}) {
-    const LargeTiming t = time_large_column(w, N, e, settle, window, seed);
-    fmt::print("{:>6.0e} | {:>8.2f} {:>10.0f} {:>10.0f} {:>9.2f} | {:>9.2f} {:>12} {:>9.2f} | {:>8.2f}x {:>8.2f} {:>8.2f}\n",
-               w.k, t.exact_s, t.events, t.collisions, 1e6 * t.exact_s / t.events, t.ref_s,
-               w.ref_window < window ? fmt::format("{} x{:.0f}", w.ref_window, window / w.ref_window) : "measured",
-               1e6 * t.ref_s / t.events, t.ref_s / t.exact_s,
-               static_cast<double>(t.window.cluster_search_steps) / t.events,
-               static_cast<double>(t.window.search_steps - t.window.cluster_search_steps) / t.events);
+             seed, settle, window);
+  fmt::print("{:>4} {:>4} {:>6} | {:>8} {:>10} {:>10} {:>9} | {:>9} {:>12} {:>9} | {:>9} {:>8} {:>8}\n", "N", "e", "k",
+             "exact s", "events", "collisions", "us/event", "ref s", "ref window", "us/event", "ratio", "cl.steps", "edge");
+  for (const Settled& c : {Settled{150, 0.1, {1e6, 5.0}}, Settled{150, 0.1, {1e8, 0.5}}, Settled{150, 0.1, {1e10, 0.05}},
+                           Settled{40, 0.1, {1e10, 0.05}}, Settled{100, 0.2, {1e10, 0.05}}}) {
+    const LargeColumn& w = c.w;
+    const LargeTiming t = time_large_column(w, c.N, c.e, settle, window, seed);
+    fmt::print(
+        "{:>4} {:>4} {:>6.0e} | {:>8.2f} {:>10.0f} {:>10.0f} {:>9.2f} | {:>9.2f} {:>12} {:>9.2f} | {:>8.2f}x {:>8.2f} "
+        "{:>8.2f}\n",
+        c.N, c.e, w.k, t.exact_s, t.events, t.collisions, 1e6 * t.exact_s / t.events, t.ref_s,
+        w.ref_window < window ? fmt::format("{} x{:.0f}", w.ref_window, window / w.ref_window) : "measured",
+        1e6 * t.ref_s / t.events, t.ref_s / t.exact_s, static_cast<double>(t.window.cluster_search_steps) / t.events,
+        static_cast<double>(t.window.search_steps - t.window.cluster_search_steps) / t.events);
     std::fflush(stdout);
   }
   fmt::print("events: exact engine's events in the window (contact begins, ends, floor hits, refreshes); ref us/event: the "

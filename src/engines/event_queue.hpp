@@ -51,6 +51,8 @@ class BasicEventQueue {
     stale_ = true;
   }
 
+  const Time& time(int slot) const { return t_[slot]; }
+
   int next_slot() const {  // the earliest (the lowest slot on a tie)
     if (stale_) find_next();
     return next_slot_;

@@ -11,7 +11,7 @@
 namespace granchain {
 
 namespace {
-constexpr double kNever = EventQueue::kNever;
+constexpr double kNever = free_flight::kInf;
 // Initial overlaps smaller than this (relative to d) are round-off of a touching start.
 constexpr double kTouchTolerance = 1e-12;
 }  // namespace
@@ -35,9 +35,7 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
   }
   u_ = initial.v;
   tu_.assign(n_, t);
-  gap_s_.assign(std::max(n_ - 1, 0), 0.0);
-  gap_t_.assign(std::max(n_ - 1, 0), t);
-  rel_.assign(std::max(n_ - 1, 0), 0.0);
+  gaps_.reset(n_, t);
   for (int i = 0; i + 1 < n_; ++i) {
     double s = initial.z[i + 1] - initial.z[i] - d_;
     if (s < 0) {
@@ -48,8 +46,8 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
       }
       s = 0;
     }
-    gap_s_[i] = s;
-    rel_[i] = initial.v[i + 1] - initial.v[i];
+    gaps_.s[i] = s;
+    gaps_.c[i] = initial.v[i + 1] - initial.v[i];
   }
   floor_h_ = initial.z[0] - 0.5 * d_;
   floor_t_ = t;
@@ -62,7 +60,7 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
   last_collision_.assign(n_, -std::numeric_limits<double>::infinity());
   ring_t_.assign(options_.collapse_collisions, 0.0);
   ring_pair_.assign(options_.collapse_collisions, 0);
-  queue_.reset(n_);
+  schedule_.reset(n_, false);
   for (int i = 0; i + 1 < n_; ++i) predict_gap(i);
   predict_floor();
 }
@@ -71,8 +69,8 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
 // Gaps and the floor: values at reference times, moved forward only when a velocity changes.
 
 void HardSphereEngine::sync_gap(int i, double t) {
-  gap_s_[i] = std::max(0.0, gap_at(i, t));
-  gap_t_[i] = t;
+  gaps_.s[i] = std::max(0.0, gap_at(i, t));
+  gaps_.t[i] = t;
 }
 
 void HardSphereEngine::sync_floor(double t) {
@@ -84,15 +82,15 @@ void HardSphereEngine::sync_floor(double t) {
 
 // Gap i closes when s + r (t - t_i) = 0 with r = v_{i+1} - v_i < 0 (free_flight.hpp).
 void HardSphereEngine::predict_gap(int i) {
-  const double s = free_flight::first_root(gap_s_[i], rel_[i], 0.0);
-  queue_.set(i, s == kNever ? kNever : std::max(now_, gap_t_[i] + s));
+  const double s = gaps_.closing(i);
+  schedule_.set(schedule_.interaction(i), s == kNever ? kNever : std::max(now_, gaps_.t[i] + s));
 }
 
 // Particle 1 reaches the floor when h + w tau - g tau^2 / 2 = 0 (w its velocity at floor_t_).
 void HardSphereEngine::predict_floor() {
   if (floor_ == nullptr) return;
   const double tau = free_flight::first_root(floor_h_, velocity(0, floor_t_), -g_);
-  queue_.set(n_ - 1, tau == kNever ? kNever : std::max(now_, floor_t_ + tau));
+  schedule_.set(schedule_.floor(), tau == kNever ? kNever : std::max(now_, floor_t_ + tau));
 }
 
 // ----------------------------------------------------------------------------------------------
@@ -104,7 +102,7 @@ void HardSphereEngine::collide(int i, double t, EventSink& sink) {
   if (i > 0) sync_gap(i - 1, t);
   if (i + 2 < n_) sync_gap(i + 1, t);
   if (i == 0) sync_floor(t);
-  const double r = rel_[i];  // < 0: approaching
+  const double r = gaps_.c[i];  // < 0: approaching
   double e = e_;
   if (options_.tc > 0 && (t - last_collision_[i] < options_.tc || t - last_collision_[i + 1] < options_.tc)) {
     e = 1.0;  // TC model
@@ -116,11 +114,11 @@ void HardSphereEngine::collide(int i, double t, EventSink& sink) {
   u_[i] = vi;
   u_[i + 1] = vj;
   tu_[i] = tu_[i + 1] = t;
-  gap_s_[i] = 0.0;
-  gap_t_[i] = t;
-  rel_[i] = -e * r;
-  if (i > 0) rel_[i - 1] -= delta;      // v_i went down by delta
-  if (i + 2 < n_) rel_[i + 1] -= delta;  // v_{i+1} went up by delta
+  gaps_.s[i] = 0.0;
+  gaps_.t[i] = t;
+  gaps_.c[i] = -e * r;
+  if (i > 0) gaps_.c[i - 1] -= delta;      // v_i went down by delta
+  if (i + 2 < n_) gaps_.c[i + 1] -= delta;  // v_{i+1} went up by delta
   last_collision_[i] = last_collision_[i + 1] = t;
   if (!std::isfinite(vi) || !std::isfinite(vj)) {
     throw UnphysicalStateError(t, i + 1, i + 2, fmt::format("non-finite velocities after a collision at t = {:.10g}", t));
@@ -144,7 +142,7 @@ void HardSphereEngine::floor_hit(double t, EventSink& sink) {
   }
   u_[0] = speed;
   tu_[0] = t;
-  if (n_ > 1) rel_[0] -= speed - v_in;
+  if (n_ > 1) gaps_.c[0] -= speed - v_in;
   floor_h_ = 0.0;
   floor_t_ = t;
   last_collision_[0] = t;
@@ -186,21 +184,16 @@ void HardSphereEngine::watch_collapse(double t, int pair) {
 
 void HardSphereEngine::advance_to(double t, EventSink& sink) {
   if (!(t >= now_)) throw std::logic_error("HardSphereEngine::advance_to: time must not go back");
-  while (queue_.next_time() <= t) {
-    const int slot = queue_.next_slot();
-    now_ = queue_.next_time();
+  now_ = run_events(schedule_, t, sink, [&](int slot, double t_event) {
+    now_ = t_event;
     ++counters_.steps;
-    if (slot == n_ - 1 && floor_ != nullptr) {
-      floor_hit(now_, sink);
+    const auto [family, pair] = schedule_.slot_of(slot);
+    if (family == EventFamily::Floor) {
+      floor_hit(t_event, sink);
     } else {
-      collide(slot, now_, sink);
+      collide(pair, t_event, sink);
     }
-    if (sink.stop_requested()) {
-      state_valid_ = false;
-      return;
-    }
-  }
-  now_ = t;
+  });
   state_valid_ = false;
 }
 

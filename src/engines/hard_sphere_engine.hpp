@@ -21,8 +21,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engines/chain_schedule.hpp"
 #include "engines/engine.hpp"
-#include "engines/event_queue.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 
@@ -72,7 +72,7 @@ class HardSphereEngine final : public Engine {
 
  private:
   double velocity(int p, double t) const { return u_[p] - g_ * (t - tu_[p]); }
-  double gap_at(int i, double t) const { return gap_s_[i] + rel_[i] * (t - gap_t_[i]); }
+  double gap_at(int i, double t) const { return gaps_.line_at(i, t); }
   void sync_gap(int i, double t);
   void sync_floor(double t);
   void predict_gap(int i);
@@ -87,7 +87,7 @@ class HardSphereEngine final : public Engine {
   HardSphereOptions options_;
 
   std::vector<double> u_, tu_;                 // velocity of each particle at its reference time
-  std::vector<double> gap_s_, gap_t_, rel_;    // gap i at gap_t_, and v_{i+1} - v_i (constant)
+  GapLines<double> gaps_;                      // gap i: s at t, and the rate c = v_{i+1} - v_i (constant)
   double floor_h_ = 0, floor_t_ = 0;           // z_1 - d/2 at floor_t_
   std::vector<double> last_collision_;         // TC model: time of each particle's last collision
   std::uint64_t tc_elastic_ = 0;
@@ -98,7 +98,8 @@ class HardSphereEngine final : public Engine {
   std::size_t ring_next_ = 0;
   std::uint64_t collisions_ = 0;
 
-  EventQueue queue_;  // slots 0..n-2: gaps closing; slot n-1: the floor
+  struct NoDetail {};  // every interaction event is a collision, every floor event a floor hit
+  ChainSchedule<double, NoDetail> schedule_;  // interaction and floor families (chain_schedule.hpp)
   double now_ = 0;
   EngineCounters counters_;
   mutable ChainState state_;

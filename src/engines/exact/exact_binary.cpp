@@ -21,7 +21,7 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
   if (a == 0) sync_floor(t);
   // merge: the overlap's rate is -(c + u_b - u_a), u = 0 for single particles; the pair's centre
   // of mass moves at V_a + c / 2.
-  const double c = gap_c_[pair];
+  const double c = gaps_.c[pair];
   const double speed = std::abs(c);
   const double dVa = c * 1 / 2, dVb = dVa - c;
   const double V = com_velocity(a, t) + dVa;
@@ -34,8 +34,8 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
   y0_[a] = 0.0 + pair_table_->S[0] * 0.0;  // y = S^T x (to_modes)
   yd0_[a] = 0.0 + pair_table_->S[0] * -c;
   amp0_[a] = pair_table_->modes[0].energy_amplitude(y0_[a], yd0_[a]);
-  if (a > 0) gap_c_[a - 1] += dVa;
-  if (b + 1 < n_) gap_c_[b] -= dVb;
+  if (a > 0) gaps_.c[a - 1] += dVa;
+  if (b + 1 < n_) gaps_.c[b] -= dVb;
   grazing_streak_[pair] = 0;  // a resolvable contact: merge's non-grazing branch
   hold_until_[pair] = -kInf;
   set_slot(cluster_slot(b), kInf, SlotKind::None, b);
@@ -64,11 +64,11 @@ void ExactEngine::merge_free_pair(int pair, Time t, EventSink& sink) {
   }
   // predict_gap next to the pair and a single particle: no holds on either side, and the pair's
   // edge reaches |1/2| amp0 (edge_reach) in either direction.
-  const Time horizon = slots_[cluster_slot(a)].t;  // the single particle's slot is never earlier
+  const Time horizon = slot_time(cluster_slot(a));  // the single particle's slot is never earlier
   const double reach = 0.0 + 0.5 * amp0_[a];
   auto predict_outer = [&](int i, bool single_beyond) {
     if (single_beyond &&
-        bound_excludes(bound_clear(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, true), horizon - t)) {
+        bound_excludes(bound_clear(gaps_.s[i] - gap_mb_[i] + gap_ma_[i], gaps_.c[i], 0.0, reach, true), horizon - t)) {
       clear_slot_before(gap_slot(i), horizon, i);
     } else {
       predict_gap(i);

@@ -31,7 +31,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     pair_.restitution = std::exp(-mc.beta * pair_.tau);
   }
   const double t = initial.t;
-  now_ = last_event_t_ = t;
+  now_ = t;
   for (int i = 0; i < n_; ++i) {
     if (!std::isfinite(initial.z[i]) || !std::isfinite(initial.v[i])) {
       throw UnphysicalStateError(t, i + 1, i + 1, fmt::format("non-finite initial state of particle {}", i + 1));
@@ -50,9 +50,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   y0_.assign(n_, 0.0);
   yd0_.assign(n_, 0.0);
   amp0_.assign(n_, 0.0);
-  gap_s_.assign(n_, 0.0);
-  gap_t_.assign(n_, t);
-  gap_c_.assign(n_, 0.0);
+  gaps_.reset(n_, t);
   gap_ma_.assign(n_, 0.0);
   gap_mb_.assign(n_, 0.0);
   for (auto* s : {&sx_, &sxd_, &sv_, &sv2_}) s->assign(n_, 0.0);
@@ -85,8 +83,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   }
   for (int i = 0; i + 1 < n_; ++i) {
     if (lo_of_[i] != lo_of_[i + 1]) {
-      gap_s_[i] = -x[i];
-      gap_c_[i] = V0_[i + 1] - V0_[lo_of_[i]];
+      gaps_.s[i] = -x[i];
+      gaps_.c[i] = V0_[i + 1] - V0_[lo_of_[i]];
       rebase_gap(i, t);
     }
   }
@@ -96,8 +94,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   }
   rebase_floor(t);
 
-  slots_.assign(2 * n_, Slot{kInf, SlotKind::None, 0});
-  queue_.reset(2 * n_);
+  schedule_.reset(n_, true);
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) predict_cluster(lo);
   for (int i = 0; i + 1 < n_; ++i) {
     if (lo_of_[i] != lo_of_[i + 1]) predict_gap(i);
@@ -223,8 +220,8 @@ double ExactEngine::gap_at(int i, Time t) const {
 void ExactEngine::sync_gap(int i, Time t) { sync_gap_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t)); }
 
 void ExactEngine::sync_gap_edges(int i, Time t, double ma, double mb) {
-  gap_s_[i] += gap_c_[i] * (t - gap_t_[i]) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
-  gap_t_[i] = t;
+  gaps_.s[i] += gaps_.c[i] * (t - gaps_.t[i]) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
+  gaps_.t[i] = t;
   gap_ma_[i] = ma;
   gap_mb_[i] = mb;
 }
@@ -232,9 +229,9 @@ void ExactEngine::sync_gap_edges(int i, Time t, double ma, double mb) {
 // A neighbour that did not re-form keeps the mode-part origin sync_gap gave it at t.
 void ExactEngine::rebase_gap(int i, Time t) {
   const int a = lo_of_[i], b = i + 1;
-  if (gap_t_[i] != t || t0_[a] == t) gap_ma_[i] = edge_mode(a, true, t);
-  if (gap_t_[i] != t || t0_[b] == t) gap_mb_[i] = edge_mode(b, false, t);
-  gap_t_[i] = t;
+  if (gaps_.t[i] != t || t0_[a] == t) gap_ma_[i] = edge_mode(a, true, t);
+  if (gaps_.t[i] != t || t0_[b] == t) gap_mb_[i] = edge_mode(b, false, t);
+  gaps_.t[i] = t;
 }
 
 void ExactEngine::sync_floor(Time t) { sync_floor_mode(t, edge_mode(0, false, t)); }
@@ -254,77 +251,67 @@ void ExactEngine::rebase_floor(Time t) {
 // ----------------------------------------------------------------------------------------------
 // The event loop (the events themselves: exact_events.cpp, exact_binary.cpp)
 
-void ExactEngine::handle(int slot, EventSink& sink) {
-  const Slot s = slots_[slot];
-  const Time t = s.t;
-  if (t == last_event_t_) {
-    if (++same_time_events_ > kMaxSameTimeEvents) {
-      throw UnphysicalStateError(t.value(), s.pair + 1, s.pair + 2,
-                                 fmt::format("events pile up at t = {:.17g} without time advancing", t.value()));
-    }
-  } else {
-    same_time_events_ = 0;
-    last_event_t_ = t;
-  }
+void ExactEngine::handle(int slot, const Time& t, EventSink& sink) {
+  const SlotDetail s = schedule_.detail(slot);
   ++counters_.steps;
-  if (slot == floor_slot()) {
-    if (s.kind == SlotKind::FloorHit) {
-      floor_hit(t, sink);
-    } else {
-      sync_floor(t);
-      predict_floor();
-    }
-  } else if (slot >= n_) {
-    const int i = slot - n_;
-    if (s.kind == SlotKind::ContactBegin) {
-      // Two free particles meeting with a resolvable speed (c != 0): the short path.
-      if (shortcuts_ && lo_of_[i] == i && hi_[i + 1] == i + 1 && pair_.tau > 0 && gap_c_[i] != 0.0) {
+  const auto [family, index] = schedule_.slot_of(slot);
+  switch (family) {
+    case EventFamily::Floor:
+      if (s.kind == SlotKind::FloorHit) {
+        floor_hit(t, sink);
+      } else {
+        sync_floor(t);
+        predict_floor();
+      }
+      return;
+    case EventFamily::Interaction: {
+      const int i = index;
+      if (s.kind != SlotKind::ContactBegin) {
+        sync_gap(i, t);
+        predict_gap(i);
+      } else if (shortcuts_ && lo_of_[i] == i && hi_[i + 1] == i + 1 && pair_.tau > 0 && gaps_.c[i] != 0.0) {
+        // Two free particles meeting with a resolvable speed (c != 0): the short path.
         ++shortcut_events_;
         merge_free_pair(i, t, sink);
       } else {
         merge(i, t, sink);
       }
-    } else {
-      sync_gap(i, t);
-      predict_gap(i);
+      return;
     }
-  } else if (s.kind == SlotKind::ContactEnd) {
-    if (shortcuts_ && is_fresh_pair(slot) && s.tau == pair_.tau) {
-      ++shortcut_events_;
-      split_fresh_pair(slot, t, sink);
-    } else {
-      split(slot, s.pair, t, s.tau, sink);
+    case EventFamily::Local: {
+      const int lo = index;
+      if (s.kind == SlotKind::ContactEnd) {
+        if (shortcuts_ && is_fresh_pair(lo) && s.tau == pair_.tau) {
+          ++shortcut_events_;
+          split_fresh_pair(lo, t, sink);
+        } else {
+          split(lo, s.pair, t, s.tau, sink);
+        }
+      } else if (s.kind == SlotKind::PassThrough) {
+        throw UnphysicalStateError(
+            t.value(), s.pair + 1, s.pair + 2,
+            fmt::format("particles {} and {} passed through each other at t = {:.10g} (overlap reached d)",
+                        s.pair + 1, s.pair + 2, t.value()));
+      } else {
+        refresh_cluster(lo, t);
+      }
+      return;
     }
-  } else if (s.kind == SlotKind::PassThrough) {
-    throw UnphysicalStateError(
-        t.value(), s.pair + 1, s.pair + 2,
-        fmt::format("particles {} and {} passed through each other at t = {:.10g} (overlap reached d)",
-                    s.pair + 1, s.pair + 2, t.value()));
-  } else {
-    refresh_cluster(slot, t);
   }
 }
 
 void ExactEngine::advance_to(double t_end, EventSink& sink) {
   const Time t = t_end;
   if (!(t >= now_)) throw std::logic_error("ExactEngine::advance_to: time must not go back");
-  while (queue_.next_time() <= t) {
-    const Time t_event = queue_.next_time();
-    handle(next_slot(), sink);
-    if (audit_) audit_interval(t_event, std::min(queue_.next_time(), t));
-    if (sink.stop_requested()) {
-      now_ = t_event;
-      state_valid_ = false;
-      return;
-    }
-  }
-  now_ = t;
+  now_ = run_events(schedule_, t, sink, [&](int slot, const Time& t_event) {
+    handle(slot, t_event, sink);
+    if (audit_) audit_interval(t_event, std::min(schedule_.next_time(), t));
+  });
   state_valid_ = false;
 }
 
 void ExactEngine::set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau) {
-  slots_[slot] = Slot{t, kind, pair, tau};
-  queue_.set(slot, t);
+  schedule_.set(slot, t, SlotDetail{kind, pair, tau});
 }
 
 }  // namespace granchain

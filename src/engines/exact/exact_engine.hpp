@@ -24,7 +24,7 @@
 
 #include "engines/exact/cluster_modes.hpp"
 #include "engines/engine.hpp"
-#include "engines/event_queue.hpp"
+#include "engines/chain_schedule.hpp"
 #include "engines/fine_time.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
@@ -72,14 +72,12 @@ class ExactEngine final : public Engine {
   // Below this fraction of tau_c the engine does not resolve a function that touches zero within
   // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
   static constexpr double kResolutionSkip = 1e-6;
-  // Events allowed at one and the same instant before the engine declares itself stuck.
-  static constexpr std::uint64_t kMaxSameTimeEvents = 1000000;
 
   enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
-  struct Slot {
-    Time t;
-    SlotKind kind;
-    int pair;
+  // What a slot's event is (its time is the schedule's).
+  struct SlotDetail {
+    SlotKind kind = SlotKind::None;
+    int pair = 0;
     double tau = 0;  // for cluster events: the root in the cluster's own time (t rounds t0 + tau)
   };
   struct Root {
@@ -139,7 +137,7 @@ class ExactEngine final : public Engine {
   // The same from the mode parts of the lower cluster's top (m_a) and the upper one's bottom (m_b)
   // at t.
   double gap_from_edges(int i, Time t, double m_a, double m_b) const {
-    return gap_s_[i] + gap_c_[i] * (t - gap_t_[i]) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
+    return gaps_.s[i] + gaps_.c[i] * (t - gaps_.t[i]) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
   }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void sync_gap_edges(int i, Time t, double m_a, double m_b);  // the same, given the edges' mode parts at t
@@ -161,7 +159,7 @@ class ExactEngine final : public Engine {
   double pair_contact_end(int lo) const;  // two-particle cluster: closed form
 
   // --- events ---
-  void handle(int slot, EventSink& sink);
+  void handle(int slot, const Time& t, EventSink& sink);
   void split(int lo, int pair, Time t, double tau, EventSink& sink);
   // The end of split: the two parts formed at t from their overlaps x, xd (null for single
   // particles), the old centre of mass's velocity V and the parts' centre-of-mass velocities
@@ -204,19 +202,20 @@ class ExactEngine final : public Engine {
   bool audit_ = false;
   std::uint64_t audit_draws_ = 0;
 
-  // --- schedule: 2N slots (N clusters, N-1 gaps, the floor) in an EventQueue ---
-  int cluster_slot(int lo) const { return lo; }
-  int gap_slot(int i) const { return n_ + i; }
-  int floor_slot() const { return 2 * n_ - 1; }
+  // --- schedule: the local family holds the clusters' events (slot lo), the interaction family the
+  // gaps', and the floor (chain_schedule.hpp) ---
+  int cluster_slot(int lo) const { return schedule_.local(lo); }
+  int gap_slot(int i) const { return schedule_.interaction(i); }
+  int floor_slot() const { return schedule_.floor(); }
+  const Time& slot_time(int slot) const { return schedule_.time(slot); }
   void set_slot(int slot, const Time& t, SlotKind kind, int pair, double tau = 0.0);
   // A gap or floor slot with no event before `horizon`, the time of a neighbouring cluster's own
   // event (which re-predicts this slot, and wins a tie as the lower slot): a time the slot holds
   // from an earlier prediction is left as it is when it is not before the horizon, so it can
   // never fire; an earlier one is cleared. This saves schedule updates, not physics.
   void clear_slot_before(int slot, const Time& horizon, int pair) {
-    if (!(slots_[slot].t >= horizon)) set_slot(slot, kInf, SlotKind::None, pair);
+    if (!(slot_time(slot) >= horizon)) set_slot(slot, kInf, SlotKind::None, pair);
   }
-  int next_slot() const { return queue_.next_slot(); }
 
   int n_;
   double d_, g_, k_over_m_, D_, tau_c_;
@@ -236,18 +235,17 @@ class ExactEngine final : public Engine {
   std::uint64_t formations_ = 0;
   std::vector<double> y0_, yd0_;   // mode amplitudes and rates at formation: lo + j, j < n-1
   std::vector<double> amp0_;       // sqrt(E_j) / omega0_j at formation (bounds |y_j| from then on)
-  std::vector<Time> gap_t_;                    // open pair i: reference time
-  std::vector<double> gap_s_, gap_c_;          // gap then, centre-of-mass relative velocity
-  std::vector<double> gap_ma_, gap_mb_;        // mode parts of the lower and upper edge at gap_t_
+  // Open pair i: the gap s at the reference time t, and c the relative velocity of the centres of
+  // mass of the clusters on either side (chain_schedule.hpp); beside them the mode parts of the
+  // lower cluster's top edge and the upper cluster's bottom edge at t.
+  GapLines<Time> gaps_;
+  std::vector<double> gap_ma_, gap_mb_;
   Time floor_t_ = 0;
   double floor_s_ = 0, floor_u_ = 0;       // z_1 - d/2 at floor_t_, and u then
 
-  std::vector<Slot> slots_;
-  BasicEventQueue<Time> queue_;
+  ChainSchedule<Time, SlotDetail> schedule_;
 
   Time now_ = 0;
-  std::uint64_t same_time_events_ = 0;
-  Time last_event_t_ = 0;
   mutable EngineCounters counters_;
 
   mutable ChainState state_;

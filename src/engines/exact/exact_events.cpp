@@ -51,10 +51,10 @@ void ExactEngine::part(int lo, int pair, int hi, Time t, const double* x, const 
   const int r = pair - lo;
   form_cluster(lo, pair, t, x, xd, V + u_lower);
   form_cluster(pair + 1, hi, t, x == nullptr ? nullptr : x + r + 1, xd == nullptr ? nullptr : xd + r + 1, V + u_upper);
-  gap_s_[pair] = 0.0;  // the overlap has just returned to zero
-  gap_c_[pair] = u_upper - u_lower;
-  if (lo > 0) gap_c_[lo - 1] += u_lower;
-  if (hi + 1 < n_) gap_c_[hi] -= u_upper;
+  gaps_.s[pair] = 0.0;  // the overlap has just returned to zero
+  gaps_.c[pair] = u_upper - u_lower;
+  if (lo > 0) gaps_.c[lo - 1] += u_lower;
+  if (hi + 1 < n_) gaps_.c[hi] -= u_upper;
   if (lo > 0) rebase_gap(lo - 1, t);
   rebase_gap(pair, t);
   if (hi + 1 < n_) rebase_gap(hi, t);
@@ -86,7 +86,7 @@ void ExactEngine::merge(int pair, Time t, EventSink& sink) {
   if (hi > pair + 1) cached_modes(b, t, y, yd);
   cluster_relative(b, y, yd, x + na, xd + na, u + na);
   // The gap's rate: c = V_b - V_a plus the edges' velocities relative to their centres of mass.
-  const double c = gap_c_[pair];
+  const double c = gaps_.c[pair];
   const double rate = c + u[na] - u[na - 1];
   const double scale = std::abs(c) + std::abs(u[na]) + std::abs(u[na - 1]);
   x[na - 1] = 0.0;
@@ -96,8 +96,8 @@ void ExactEngine::merge(int pair, Time t, EventSink& sink) {
   const int n = hi - a + 1, nb = hi - pair;
   const double dVa = c * nb / n, dVb = dVa - c;
   form_cluster(a, hi, t, x, xd, com_velocity(a, t) + dVa);
-  if (a > 0) gap_c_[a - 1] += dVa;
-  if (hi + 1 < n_) gap_c_[hi] -= dVb;
+  if (a > 0) gaps_.c[a - 1] += dVa;
+  if (hi + 1 < n_) gaps_.c[hi] -= dVb;
   // A grazing contact: the gap closed with no approach speed that double precision can resolve
   // (below 1e-13 of the terms its rate sums: a cluster's edge pushing a particle that rests
   // against it). The new overlap and its rate are
@@ -155,7 +155,7 @@ void ExactEngine::floor_hit(Time t, EventSink& sink) {
   const double dv = speed - v1, dV = dv / (hi + 1);
   if (hi > 0) xd[0] += dv;
   form_cluster(0, hi, t, x, xd, V + dV);
-  if (hi + 1 < n_) gap_c_[hi] -= dV;
+  if (hi + 1 < n_) gaps_.c[hi] -= dV;
   floor_s_ = 0.0;
   rebase_floor(t);
   if (hi + 1 < n_) rebase_gap(hi, t);

@@ -323,10 +323,10 @@ bool ExactEngine::has_holds(int lo) const {
 
 void ExactEngine::predict_gap(int i) {
   const int a = lo_of_[i], b = i + 1;
-  const Time t = gap_t_[i];
+  const Time t = gaps_.t[i];
   if (a == i && hi_[b] == b) {  // two free particles: a line, no edge function to build
-    const double horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t) - t;
-    const double s = free_flight::first_root(gap_s_[i], gap_c_[i], 0.0);
+    const double horizon = std::min(slot_time(cluster_slot(a)), slot_time(cluster_slot(b))) - t;
+    const double s = free_flight::first_root(gaps_.s[i], gaps_.c[i], 0.0);
     ++counters_.closed_form_predictions;
     if (s <= horizon) set_slot(gap_slot(i), t + s, SlotKind::ContactBegin, i);
     else set_slot(gap_slot(i), kInf, SlotKind::None, i);
@@ -334,13 +334,13 @@ void ExactEngine::predict_gap(int i) {
   }
   // Valid until either neighbour changes on its own (its internal event or refresh); any other
   // change of a neighbour re-predicts this gap.
-  const Time horizon = std::min(slots_[cluster_slot(a)].t, slots_[cluster_slot(b)].t);
+  const Time horizon = std::min(slot_time(cluster_slot(a)), slot_time(cluster_slot(b)));
   // The lower bound of first_root first, without building the edge function: most gaps next to a
   // cluster end here. Reach summed in first_root's order (b's bottom, then a's top).
   const bool modes_nonnegative = !has_holds(a) && !has_holds(b);
   double reach = cluster_size(b) >= 2 ? edge_reach(b, false, 0.0) : 0.0;
   if (cluster_size(a) >= 2) reach = edge_reach(a, true, reach);
-  const double clear = bound_clear(gap_s_[i] - gap_mb_[i] + gap_ma_[i], gap_c_[i], 0.0, reach, modes_nonnegative);
+  const double clear = bound_clear(gaps_.s[i] - gap_mb_[i] + gap_ma_[i], gaps_.c[i], 0.0, reach, modes_nonnegative);
   if (bound_excludes(clear, horizon - t)) {
     clear_slot_before(gap_slot(i), horizon, i);
     return;
@@ -349,9 +349,9 @@ void ExactEngine::predict_gap(int i) {
   fn.reach = reach;
   // f(s) = gap(t) + c s + [m_b(t+s) - m_b(t)] - [m_a(t+s) - m_a(t)] (gap_at): a line, since
   // gravity cancels between the centres of mass, plus the mode parts.
-  fn.c1 = gap_c_[i];
-  fn.c0 = gap_s_[i] - gap_mb_[i] + gap_ma_[i];
-  fn.noise = 8 * std::numeric_limits<double>::epsilon() * (std::abs(gap_s_[i]) + std::abs(gap_mb_[i]) + std::abs(gap_ma_[i]));
+  fn.c1 = gaps_.c[i];
+  fn.c0 = gaps_.s[i] - gap_mb_[i] + gap_ma_[i];
+  fn.noise = 8 * std::numeric_limits<double>::epsilon() * (std::abs(gaps_.s[i]) + std::abs(gap_mb_[i]) + std::abs(gap_ma_[i]));
   if (cluster_size(b) >= 2) fn.term[fn.terms++] = edge_term(b, false, +1.0, t);
   if (cluster_size(a) >= 2) fn.term[fn.terms++] = edge_term(a, true, -1.0, t);
   // The top particle of a: z_top - z_com = const - sum_i x_i (i+1)/n; the bottom one of b:
@@ -380,13 +380,13 @@ void ExactEngine::predict_floor() {
   fn.noise = 8 * std::numeric_limits<double>::epsilon() *
              (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
   fn.modes_nonnegative = !has_holds(0);
-  const double sigma_max = slots_[cluster_slot(0)].t - t;
+  const double sigma_max = slot_time(cluster_slot(0)) - t;
   double clear = 0.0;
   if (cluster_size(0) >= 2) {
     fn.reach = edge_reach(0, false, 0.0);
     clear = bound_clear(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative);
     if (bound_excludes(clear, sigma_max)) {
-      clear_slot_before(floor_slot(), slots_[cluster_slot(0)].t, 0);
+      clear_slot_before(floor_slot(), slot_time(cluster_slot(0)), 0);
       return;
     }
     fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
