@@ -34,6 +34,8 @@ using analysis::Collision;
 constexpr int kN = 25;
 constexpr double kEventGap = 10.0;  // a collapse event: successive gaps below 10 tau_c
 constexpr std::size_t kEventMin = 3;
+constexpr int kSpeedDecades = 16;  // approach speeds of collapse events binned by decade down to 1e-16
+constexpr int kSpeedColumns = 14;  // the decades the report shows, 1e-1 .. 1e-14
 
 std::vector<Collision> to_sequence(const std::vector<CollisionRecord>& recs) {
   std::vector<Collision> c;
@@ -167,12 +169,19 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
                    "particles per event | collisions in events | overlapping contacts |\n|---|---|---|---|---|---|---|\n",
                    e, launches);
   std::vector<double> ev_mean, ev_err, per_mean, per_err;
+  std::string speed_rows;
   for (double k : ks) {
     const CollapseSpec spec = free_space_spec(kN, e, k, launches, o);
     const double tau_c = contact_law(spec.params).tau_c;
     std::vector<SoftLaunch> L;
     std::vector<double> gap_hist(edges.size() + 1, 0.0), pair_hist(edges.size() + 1, 0.0), part_hist(kN + 1, 0.0);
     double overlapping = 0, gaps_total = 0;
+    // Events by the decade of their approach speed, 1e-kSpeedDecades .. 1 (slower ones in the first bin).
+    std::vector<double> speed_hist(kSpeedDecades + 1, 0.0), rebound, duration, wait;
+    const auto speed_bin = [&](double u) {
+      const double d = u > 0 ? std::floor(std::log10(u)) : -kSpeedDecades;
+      speed_hist[static_cast<std::size_t>(std::clamp(d + kSpeedDecades, 0.0, static_cast<double>(kSpeedDecades)))] += 1;
+    };
     const auto bin = [&](std::vector<double>& h, double g) {
       if (g <= 0) return;
       const auto it = std::upper_bound(edges.begin(), edges.end(), g / tau_c);
@@ -189,11 +198,24 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
         bin(gap_hist, g);
       }
       for (double g : analysis::pair_gaps(seq)) bin(pair_hist, g);
-      for (const auto& ev : analysis::collapse_events(seq, kEventGap * tau_c, kEventMin)) {
+      const std::vector<analysis::CollapseEvent> evs = analysis::collapse_events(seq, kEventGap * tau_c, kEventMin);
+      double previous_end = -1.0;
+      for (const auto& ev : evs) {
         s.events += 1;
         s.in_events += static_cast<double>(ev.collisions);
         s.particles += ev.particles;
         part_hist[static_cast<std::size_t>(std::min(ev.particles, kN))] += 1;
+        // The event's approach speed (its first collision's), the speed its last collision
+        // leaves, its duration, and the wait since the previous event, in tau_c.
+        const CollisionRecord& first = recs[ev.first];
+        const CollisionRecord& last = recs[ev.first + ev.collisions - 1];
+        double end = first.t_end;
+        for (std::size_t c = ev.first; c < ev.first + ev.collisions; ++c) end = std::max(end, recs[c].t_end);
+        speed_bin(first.speed_in);
+        if (first.speed_in > 0) rebound.push_back(last.speed_out / first.speed_in);
+        duration.push_back((end - first.t_begin) / tau_c);
+        if (previous_end >= 0) wait.push_back((first.t_begin - previous_end) / tau_c);
+        previous_end = end;
       }
       L.push_back(s);
     });
@@ -214,12 +236,26 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
     ev_mean.push_back(em), ev_err.push_back(ee), per_mean.push_back(per), per_err.push_back(pe);
     md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {:.3f} |\n", power_of_ten_text(k), plus_minus(nm, ne, 1), plus_minus(em, ee, 1),
                       plus_minus(per, pe, 2), ev_sum > 0 ? p_sum / ev_sum : 0.0, plus_minus(fm, fe, 3), gaps_total > 0 ? overlapping / gaps_total : 0.0);
+    for (double& h : speed_hist) h /= std::max<double>(1.0, static_cast<double>(L.size()));
+    speed_rows += fmt::format("| {} | {:.3g} | {:.1f} | {:.1f} |", power_of_ten_text(k), median(rebound), median(duration), median(wait));
+    for (int d = kSpeedDecades - 1; d >= kSpeedDecades - kSpeedColumns; --d) speed_rows += fmt::format(" {:.1f} |", speed_hist[static_cast<std::size_t>(d)]);
+    speed_rows += "\n";
     for (double& h : gap_hist) h /= std::max(1.0, gaps_total);
     out.json["per_k"].push_back({{"k", k}, {"tau_c", tau_c}, {"n_tot", nm}, {"n_tot_error", ne}, {"events", em}, {"events_error", ee},
                                  {"per_event", per}, {"per_event_error", pe}, {"fraction_in_events", fm}, {"gap_hist", gap_hist},
-                                 {"pair_gap_hist", pair_hist}, {"particles_hist", part_hist}, {"overlapping", gaps_total > 0 ? overlapping / gaps_total : 0.0}});
+                                 {"pair_gap_hist", pair_hist}, {"particles_hist", part_hist}, {"overlapping", gaps_total > 0 ? overlapping / gaps_total : 0.0},
+                                 {"events_by_speed_decade", speed_hist}, {"median_rebound_ratio", median(rebound)},
+                                 {"median_duration_tau_c", median(duration)}, {"median_wait_tau_c", median(wait)}});
   }
   out.json["edges"] = edges;
+  md += fmt::format("\nEach collapse event by its approach speed u_a (the relative speed of its first collision, launch speed 1): "
+                    "the median ratio u_r / u_a of the speed its last collision leaves to u_a, its median duration and the median "
+                    "wait since the previous event (τ_c), and the events per launch in each decade of u_a (column 1e-m: 1e-m ≤ u_a < 1e-(m-1)):\n\n| k | u_r / u_a | "
+                    "duration | wait |");
+  for (int c = 0; c < kSpeedColumns; ++c) md += fmt::format(" 1e{} |", -c - 1);  // the decade [1e-(c+1), 1e-c)
+  md += "\n|---|---|---|---|";
+  for (int c = 0; c < kSpeedColumns; ++c) md += "---|";
+  md += "\n" + speed_rows;
   if (ks.size() >= 2) {
     // A power of ln k, (ln k)^beta, has the local exponent beta / ln k: the events' exponent times
     // ln k at the middle of the interval is that beta, constant for such a law.
