@@ -5,7 +5,7 @@ limit-free` or `limit-driven` writes.
 Usage: /usr/bin/python3 plots/limit_exponents.py DATA.json PREFIX   -> PREFIX.png and PREFIX.pdf
 (a) the local exponent d ln n / d ln k per decade against k, one curve per series, with errors;
 (b) n / k^alpha_bar (alpha_bar the series' mean local exponent), which is flat for a power law;
-(c)-(f) the pulls (n - model) / sigma of the four candidate forms, one panel per form, over the
+(c)-(g) the pulls (n - model) / sigma of the five candidate forms, one panel per form, over the
     fitted range. Error bars are one standard error.
 """
 import sys
@@ -14,21 +14,21 @@ import numpy as np
 
 from plot_common import load, plt, save, usage
 
-FORMS = ["power law", "a + b ln k", "a + b ln k + c (ln k)^2", "power law with log"]
+FORMS = ["power law", "a + b ln k", "a + b ln k + c (ln k)^2", "power law with log", "power of ln k"]
 TEX = {"power law": r"$c\,k^\alpha$", "a + b ln k": r"$a + b \ln k$",
        "a + b ln k + c (ln k)^2": r"$a + b\ln k + c(\ln k)^2$",
-       "power law with log": r"$c\,k^\alpha (\ln k)^\beta$"}
+       "power law with log": r"$c\,k^\alpha (\ln k)^\beta$", "power of ln k": r"$c\,(\ln k)^\beta$"}
 
 
 def main(argv):
     if usage(__doc__, argv, 2):
         return 2
     data = load(argv[1])
-    fig = plt.figure(figsize=(13, 8))
-    grid = fig.add_gridspec(2, 4, height_ratios=[1.3, 1])
-    ax_a = fig.add_subplot(grid[0, 0:2])
-    ax_b = fig.add_subplot(grid[0, 2:4])
-    pulls = [fig.add_subplot(grid[1, i]) for i in range(4)]
+    fig = plt.figure(figsize=(16, 8))
+    grid = fig.add_gridspec(2, 10, height_ratios=[1.3, 1])
+    ax_a = fig.add_subplot(grid[0, 0:5])
+    ax_b = fig.add_subplot(grid[0, 5:10])
+    pulls = [fig.add_subplot(grid[1, 2 * i:2 * i + 2]) for i in range(len(FORMS))]
     y_label = data.get("y_label", "n")
     ylab = r"$n_{\rm tot}$" if y_label == "n_tot" else r"$n_{\rm coll}$"
     for s in data["series"]:
@@ -67,7 +67,7 @@ def main(argv):
         ax.axhline(0, color="k", lw=0.5)
         ax.axhspan(-2, 2, color="0.9")
         ax.set_xlabel(r"$\log_{10} k$")
-        ax.set_title("(%s) pulls: %s" % ("cdef"[i], TEX[FORMS[i]]), fontsize=9)
+        ax.set_title("(%s) pulls: %s" % ("cdefg"[i], TEX[FORMS[i]]), fontsize=9)
     pulls[0].set_ylabel(r"$(n - {\rm model})/\sigma$")
     save(fig, argv[2])
     return 0

@@ -1,5 +1,5 @@
 // The analysis of a count against k (analysis/asymptotic_forms.hpp) for numbers a notebook holds:
-// the four candidate asymptotic forms compared by AICc and BIC, the local exponents and their trend.
+// the five candidate asymptotic forms compared by AICc and BIC, the local exponents and their trend.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 

@@ -36,6 +36,7 @@ const std::function<double(double)> kPower = [](double k) { return 3.0 * std::po
 const std::function<double(double)> kLog = [](double k) { return 10.0 + 20.0 * std::log(k); };
 const std::function<double(double)> kLogSquared = [](double k) { return 10.0 + 5.0 * std::log(k) + 0.8 * std::pow(std::log(k), 2); };
 const std::function<double(double)> kPowerLog = [](double k) { return 30.0 * std::pow(k, 0.25) * std::pow(std::log(k), -1.5); };
+const std::function<double(double)> kPowerOfLog = [](double k) { return 0.5 * std::pow(std::log(k), 4.0); };
 
 // Mean chi^2 and the mean and standard deviation of the exponent's pull over repetitions.
 struct PullStats {
@@ -72,12 +73,16 @@ int picked(const std::function<double(double)>& y, AsymptoticForm truth, int rep
 // above the errors, win every time but for rare chance (at least 95 %). A log squared with a
 // positive curvature is close to a power of ln k, which the power law with log contains
 // (alpha = 0): over these nine decades the two differ by a few tenths of a percent, so that case
-// is drawn with 0.1 % errors.
+// is drawn with 0.1 % errors. So is a + b ln k: with a small against b ln k it is close to a power
+// of ln k with beta near 1, and at 1 % errors the two 2-parameter forms tie (about half the
+// repetitions each). A power of ln k is the power law with log at alpha = 0, so it wins like the
+// other simple truths (at least 85 %).
 TEST(AsymptoticForms, EachGeneratingFormIsRecognised) {
   EXPECT_GE(picked(kPower, AsymptoticForm::PowerLaw, 200, 11), 170);
-  EXPECT_GE(picked(kLog, AsymptoticForm::Logarithm, 200, 12), 170);
+  EXPECT_GE(picked(kLog, AsymptoticForm::Logarithm, 200, 12, 0.001), 170);
   EXPECT_GE(picked(kLogSquared, AsymptoticForm::LogSquared, 200, 13, 0.001), 190);
   EXPECT_GE(picked(kPowerLog, AsymptoticForm::PowerLawLog, 200, 14), 190);
+  EXPECT_GE(picked(kPowerOfLog, AsymptoticForm::PowerOfLog, 200, 15), 170);
 }
 
 // The true form's chi^2 has mean dof = 8 and variance 16 (for the power law, fitted in ln y, up to
@@ -128,7 +133,7 @@ TEST(AsymptoticForms, AkaikeWeightsSumToOneAndBadInputIsRefused) {
   double sum = 0;
   for (const auto& f : c.fits) sum += f.akaike_weight;
   EXPECT_NEAR(sum, 1.0, 1e-12);
-  EXPECT_EQ(c.fits.size(), 4u);
+  EXPECT_EQ(c.fits.size(), 5u);
   EXPECT_THROW(compare_asymptotic_forms(std::vector<DataPoint>{{1e4, 1, 0.1}, {1e5, 2, 0.1}, {1e6, 3, 0.1}}), std::invalid_argument);
   EXPECT_THROW(compare_asymptotic_forms(std::vector<DataPoint>{{1e4, 1, 0.1}, {1e5, -2, 0.1}, {1e6, 3, 0.1}, {1e7, 4, 0.1}}),
                std::invalid_argument);

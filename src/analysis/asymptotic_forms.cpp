@@ -16,6 +16,7 @@ const char* form_name(AsymptoticForm f) {
     case AsymptoticForm::Logarithm: return "a + b ln k";
     case AsymptoticForm::LogSquared: return "a + b ln k + c (ln k)^2";
     case AsymptoticForm::PowerLawLog: return "power law with log";
+    case AsymptoticForm::PowerOfLog: return "power of ln k";
   }
   return "?";
 }
@@ -26,13 +27,16 @@ const char* form_formula(AsymptoticForm f) {
     case AsymptoticForm::Logarithm: return "y = a + b ln k";
     case AsymptoticForm::LogSquared: return "y = a + b ln k + c (ln k)^2";
     case AsymptoticForm::PowerLawLog: return "y = c k^alpha (ln k)^beta";
+    case AsymptoticForm::PowerOfLog: return "y = c (ln k)^beta";
   }
   return "?";
 }
 
 namespace {
 
-bool in_log_space(AsymptoticForm f) { return f == AsymptoticForm::PowerLaw || f == AsymptoticForm::PowerLawLog; }
+bool in_log_space(AsymptoticForm f) {
+  return f == AsymptoticForm::PowerLaw || f == AsymptoticForm::PowerLawLog || f == AsymptoticForm::PowerOfLog;
+}
 
 // The design row of a form at k (its columns multiply the parameters).
 std::vector<double> design_row(AsymptoticForm f, double k) {
@@ -42,6 +46,7 @@ std::vector<double> design_row(AsymptoticForm f, double k) {
     case AsymptoticForm::Logarithm: return {1.0, L};
     case AsymptoticForm::LogSquared: return {1.0, L, L * L};
     case AsymptoticForm::PowerLawLog: return {1.0, L, std::log(L)};
+    case AsymptoticForm::PowerOfLog: return {1.0, std::log(L)};
   }
   return {};
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Which asymptotic form does a count y(k) follow as k grows? (n_coll or n_tot against k: the
-// paper's question whether n ~ k^alpha is a power law, Sec. III.C and Summary.) Four candidate
+// paper's question whether n ~ k^alpha is a power law, Sec. III.C and Summary.) Five candidate
 // forms, each linear in its parameters after a transformation, fitted by generalised least squares
 // with the full covariance of the points (counts of the same free-space launches at every k are
 // correlated; independent runs have a diagonal covariance):
@@ -8,8 +8,9 @@
 //   logarithm            y = a + b ln k
 //   log squared          y = a + b ln k + c (ln k)^2
 //   power law with log   y = c k^alpha (ln k)^beta       (ln y = a + alpha ln k + beta ln ln k)
+//   power of log         y = c (ln k)^beta               (ln y = a + beta ln ln k: the same with alpha = 0)
 // The power forms are fitted in ln y with the covariance propagated (C_ij / (y_i y_j)); every
-// form's chi^2 is then evaluated on y itself, r^T C^-1 r with r = y - model, so the four are
+// form's chi^2 is then evaluated on y itself, r^T C^-1 r with r = y - model, so the five are
 // compared on the same footing: AICc = chi^2 + 2p + 2p(p+1)/(n-p-1) and BIC = chi^2 + p ln n
 // (Gaussian likelihood with known errors, constants dropped), and Akaike weights exp(-dAICc/2).
 #include <Eigen/Dense>
@@ -20,15 +21,17 @@
 
 namespace granchain::analysis {
 
-enum class AsymptoticForm { PowerLaw, Logarithm, LogSquared, PowerLawLog };
+enum class AsymptoticForm { PowerLaw, Logarithm, LogSquared, PowerLawLog, PowerOfLog };
 const char* form_name(AsymptoticForm f);     // "power law", "a + b ln k", ...
 const char* form_formula(AsymptoticForm f);  // "y = c k^alpha", ...
 inline constexpr AsymptoticForm kAsymptoticForms[] = {AsymptoticForm::PowerLaw, AsymptoticForm::Logarithm,
-                                                      AsymptoticForm::LogSquared, AsymptoticForm::PowerLawLog};
+                                                      AsymptoticForm::LogSquared, AsymptoticForm::PowerLawLog,
+                                                      AsymptoticForm::PowerOfLog};
 
 struct FormFit {
   AsymptoticForm form = AsymptoticForm::PowerLaw;
-  // Parameters in the order of the formula: (ln c, alpha), (a, b), (a, b, c), (ln c, alpha, beta);
+  // Parameters in the order of the formula: (ln c, alpha), (a, b), (a, b, c), (ln c, alpha, beta),
+  // (ln c, beta);
   // standard errors from the covariance (not rescaled by chi^2: the comparison needs them raw).
   std::vector<double> param, error;
   double chi2 = 0;

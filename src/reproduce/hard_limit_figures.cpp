@@ -54,9 +54,10 @@ FormsOutcome compare_forms(const std::vector<double>& k, const std::vector<doubl
                              power_of_ten_text(kk.front()), power_of_ten_text(kk.back()), kk.size());
   for (const auto& f : c.fits) {
     std::string params;
-    const char* names[3] = {f.form == analysis::AsymptoticForm::PowerLaw || f.form == analysis::AsymptoticForm::PowerLawLog ? "ln c" : "a",
-                            f.form == analysis::AsymptoticForm::PowerLaw || f.form == analysis::AsymptoticForm::PowerLawLog ? "α" : "b",
-                            f.form == analysis::AsymptoticForm::PowerLawLog ? "β" : "c"};
+    using analysis::AsymptoticForm;
+    const bool power = f.form == AsymptoticForm::PowerLaw || f.form == AsymptoticForm::PowerLawLog || f.form == AsymptoticForm::PowerOfLog;
+    const char* names[3] = {power ? "ln c" : "a", f.form == AsymptoticForm::PowerOfLog ? "β" : power ? "α" : "b",
+                            f.form == AsymptoticForm::PowerLawLog ? "β" : "c"};
     for (std::size_t i = 0; i < f.param.size(); ++i) params += fmt::format("{}{} = {}", i ? ", " : "", names[i], plus_minus(f.param[i], f.error[i], 4));
     double worst = 0;
     for (double p : f.pulls) worst = std::max(worst, std::abs(p));
