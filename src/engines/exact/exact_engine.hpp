@@ -137,7 +137,7 @@ class ExactEngine final : public Engine {
   // The same from the mode parts of the lower cluster's top (m_a) and the upper one's bottom (m_b)
   // at t.
   double gap_from_edges(int i, Time t, double m_a, double m_b) const {
-    return gaps_.s[i] + gaps_.c[i] * (t - gaps_.t[i]) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
+    return gaps_.line_at(i, t) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
   }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void sync_gap_edges(int i, Time t, double m_a, double m_b);  // the same, given the edges' mode parts at t

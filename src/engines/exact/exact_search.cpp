@@ -326,7 +326,7 @@ void ExactEngine::predict_gap(int i) {
   const Time t = gaps_.t[i];
   if (a == i && hi_[b] == b) {  // two free particles: a line, no edge function to build
     const double horizon = std::min(slot_time(cluster_slot(a)), slot_time(cluster_slot(b))) - t;
-    const double s = free_flight::first_root(gaps_.s[i], gaps_.c[i], 0.0);
+    const double s = gaps_.closing(i);
     ++counters_.closed_form_predictions;
     if (s <= horizon) set_slot(gap_slot(i), t + s, SlotKind::ContactBegin, i);
     else set_slot(gap_slot(i), kInf, SlotKind::None, i);
