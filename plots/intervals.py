@@ -12,7 +12,8 @@ Usage: /usr/bin/python3 plots/intervals.py intervals.json PREFIX   -> PREFIX.png
     plot: curves that coincide mean the sequences end at the cut-off the same way at every k), and
     the gaps between successive collisions of one pair at the largest k (dashed); overlapping
     contacts (negative gaps) are counted in the total but not drawn;
-(e) collapse events per launch and collisions per event against k;
+(e) collapse events per launch and collisions per event against k; cascades (events less than
+    1000 tau_c apart) per launch and events per cascade;
 (f) particles per collapse event (soft, largest k) and in the final hard-sphere collapse.
 """
 import sys
@@ -57,6 +58,12 @@ def main(argv):
         pere = np.array([p["per_event_error"] for p in per_k])
         ax[4].errorbar(k, ev, yerr=eve, fmt="o-", ms=4, color="C%d" % j, label=r"events per launch, $e = %g$" % s["e"])
         ax[4].errorbar(k, per, yerr=pere, fmt="s--", ms=4, color="C%d" % j, label=r"collisions per event, $e = %g$" % s["e"])
+        if "cascades" in per_k[0]:
+            ca = np.array([p["cascades"] for p in per_k])
+            cae = np.array([p["cascades_error"] for p in per_k])
+            epc = np.array([p["events_per_cascade"] for p in per_k])
+            ax[4].errorbar(k, ca, yerr=cae, fmt="^:", ms=4, color="C%d" % j, label=r"cascades per launch, $e = %g$" % s["e"])
+            ax[4].plot(k, epc, "v-.", ms=4, lw=0.8, color="C%d" % j, label=r"events per cascade, $e = %g$" % s["e"])
         edges = np.array(s["edges"], dtype=float)
         centres = np.sqrt(edges[1:] * edges[:-1])
         if j == 0:
@@ -91,7 +98,8 @@ def main(argv):
     ax[4].set_xscale("log")
     ax[4].set_yscale("log")
     ax[4].set_xlabel(r"$k$")
-    ax[4].set_title("(e) soft: collapse events", fontsize=10)
+    ax[4].set_ylabel("count")
+    ax[4].set_title("(e) soft: collapse events and cascades", fontsize=10)
     ax[5].set_xlabel("particles")
     ax[5].set_ylabel("fraction")
     ax[5].set_title("(f) particles in a collapse", fontsize=10)

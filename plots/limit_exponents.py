@@ -4,7 +4,9 @@ limit-free` or `limit-driven` writes.
 
 Usage: /usr/bin/python3 plots/limit_exponents.py DATA.json PREFIX   -> PREFIX.png and PREFIX.pdf
 (a) the local exponent d ln n / d ln k per decade against k, one curve per series, with errors;
-(b) n / k^alpha_bar (alpha_bar the series' mean local exponent), which is flat for a power law;
+(b) the local exponent times ln k at the middle of its interval: the beta of (ln k)^beta, flat for
+    a power of ln k, rising toward J for a polynomial of degree J in ln k, and rising by alpha ln 10
+    per decade for c k^alpha (ln k)^beta;
 (c)-(g) the pulls (n - model) / sigma of the five candidate forms, one panel per form, over the
     fitted range. Error bars are one standard error.
 """
@@ -41,14 +43,9 @@ def main(argv):
             color = line[0].get_color()
         else:
             color = None
-        k = np.array(s["k"], dtype=float)
-        n = np.array(s["y"], dtype=float)
-        err = np.array(s["error"], dtype=float)
-        abar = s.get("trend", {}).get("mean")
-        if abar is not None and np.isfinite(abar):
-            scaled = n / k ** abar
-            ax_b.errorbar(np.log10(k), scaled / scaled[-1], yerr=err / k ** abar / scaled[-1], fmt="o-", ms=3, lw=0.8,
-                          capsize=2, color=color, label=r"%s, $\bar\alpha = %.3f$" % (s["label"], abar))
+        if local:
+            ln_mid = mid * np.log(10.0)
+            ax_b.errorbar(mid, a * ln_mid, yerr=e * ln_mid, fmt="o-", ms=3, lw=0.8, capsize=2, color=color, label=s["label"])
         fit = s.get("fit")
         if fit:
             kf = np.log10(np.array(fit["k"], dtype=float))
@@ -60,8 +57,8 @@ def main(argv):
     ax_a.set_title("(a) %s: local exponent per decade" % data.get("title", ""), fontsize=10)
     ax_a.legend(fontsize=8, ncol=2)
     ax_b.set_xlabel(r"$\log_{10} k$")
-    ax_b.set_ylabel(r"%s$\,/\,k^{\bar\alpha}$ (last point = 1)" % ylab)
-    ax_b.set_title(r"(b) flat for a power law", fontsize=10)
+    ax_b.set_ylabel(r"local exponent $\times \ln k$")
+    ax_b.set_title(r"(b) the $\beta$ of $(\ln k)^\beta$: flat for a power of $\ln k$", fontsize=10)
     ax_b.legend(fontsize=7, ncol=2)
     for i, ax in enumerate(pulls):
         ax.axhline(0, color="k", lw=0.5)

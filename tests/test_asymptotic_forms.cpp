@@ -184,3 +184,40 @@ TEST(AsymptoticForms, TrendOfValuesAgainstX) {
   // Two values: a mean and its chi^2, no line.
   EXPECT_TRUE(std::isnan(trend({{0.0, 1.0, 0.1}, {1.0, 1.2, 0.1}}).slope));
 }
+
+// A quartic in ln k over k = 1e4 ... 1e20 with 0.5 % independent errors (as the free-space counts
+// have): the quartic's chi^2 has mean dof (12 +- 0.28 over 300 curves), the pull of its leading
+// coefficient is standard normal, a cubic is rejected (the counts of docs/beyond.md are told apart
+// from a lower degree the same way), and too few points are refused.
+TEST(AsymptoticForms, LogPolynomialOfTheTrueDegreeFitsAndLowerDegreesDoNot) {
+  Rng rng(41);
+  std::vector<double> k;
+  for (int d = 4; d <= 20; ++d) k.push_back(std::pow(10.0, d));
+  const auto quartic = [](double kk) {
+    const double L = std::log(kk);
+    return 5.0 + 2.0 * L + 0.3 * L * L + 0.05 * L * L * L + 0.01 * std::pow(L, 4);
+  };
+  const auto n = static_cast<Eigen::Index>(k.size());
+  double chi2_sum = 0, pull_sum = 0, pull_sq = 0, cubic_z_min = 1e300;
+  const int R = 300;
+  for (int r = 0; r < R; ++r) {
+    std::vector<double> y;
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double yi = quartic(k[static_cast<std::size_t>(i)]), s = 0.005 * yi;
+      y.push_back(yi + s * rng.normal());
+      C(i, i) = s * s;
+    }
+    const LogPolynomialFit f4 = fit_log_polynomial(k, y, C, 4);
+    ASSERT_EQ(f4.dof, 12);
+    chi2_sum += f4.chi2;
+    const double pull = (f4.leading - 0.01) / f4.leading_error;
+    pull_sum += pull, pull_sq += pull * pull;
+    cubic_z_min = std::min(cubic_z_min, fit_log_polynomial(k, y, C, 3).chi2_z);
+  }
+  EXPECT_NEAR(chi2_sum / R, 12.0, 1.0);
+  EXPECT_NEAR(pull_sum / R, 0.0, 0.2);
+  EXPECT_NEAR(std::sqrt(pull_sq / R - std::pow(pull_sum / R, 2)), 1.0, 0.15);
+  EXPECT_GT(cubic_z_min, 5.0);
+  EXPECT_THROW(fit_log_polynomial({1e4, 1e5, 1e6}, {1, 2, 3}, Eigen::MatrixXd::Identity(3, 3), 2), std::invalid_argument);
+}

@@ -138,6 +138,36 @@ FormComparison compare_asymptotic_forms(const std::vector<DataPoint>& pts) {
   return compare_asymptotic_forms(k, y, C);
 }
 
+LogPolynomialFit fit_log_polynomial(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, int degree) {
+  const auto n = static_cast<Eigen::Index>(k.size());
+  if (degree < 0 || y.size() != k.size() || C.rows() != n || C.cols() != n || n < degree + 2)
+    throw std::invalid_argument("log polynomial: k, y and the covariance must have one size, at least degree + 2");
+  // In x = ln k / ln k_max, so the columns stay of order one; c_degree = b_degree / ln(k_max)^degree.
+  double L_max = 0;
+  for (double kk : k) {
+    if (!(kk > 1.0)) throw std::invalid_argument("log polynomial: every k must be above 1");
+    L_max = std::max(L_max, std::log(kk));
+  }
+  Eigen::MatrixXd X(n, degree + 1);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int j = 0; j <= degree; ++j) X(i, j) = std::pow(std::log(k[static_cast<std::size_t>(i)]) / L_max, j);
+  const Eigen::VectorXd yv = Eigen::Map<const Eigen::VectorXd>(y.data(), n);
+  const LeastSquares ls = generalised_least_squares(X, yv, C);
+  const Eigen::LLT<Eigen::MatrixXd> whiten(C);
+  LogPolynomialFit out;
+  out.degree = degree;
+  const double scale = std::pow(L_max, degree);
+  out.leading = ls.coef(degree) / scale;
+  out.leading_error = std::sqrt(ls.covariance(degree, degree)) / scale;
+  out.chi2 = whiten.matrixL().solve(yv - X * ls.coef).squaredNorm();
+  out.dof = static_cast<int>(n) - degree - 1;
+  out.chi2_z = chi2_normal_deviate(out.chi2, out.dof);
+  const double pp = degree + 1.0, nn = static_cast<double>(n);
+  out.aicc = out.chi2 + 2 * pp + (nn - pp - 1 > 0 ? 2 * pp * (pp + 1) / (nn - pp - 1) : std::numeric_limits<double>::infinity());
+  out.bic = out.chi2 + pp * std::log(nn);
+  return out;
+}
+
 std::vector<double> means(const std::vector<std::vector<double>>& samples) {
   if (samples.empty()) throw std::invalid_argument("means: no samples");
   std::vector<double> m(samples[0].size(), 0.0);

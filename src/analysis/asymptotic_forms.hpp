@@ -54,6 +54,20 @@ FormComparison compare_asymptotic_forms(const std::vector<double>& k, const std:
 // Independent points (diagonal covariance from the errors).
 FormComparison compare_asymptotic_forms(const std::vector<DataPoint>& y_of_k);
 
+// A polynomial in ln k of the given degree, y = sum_j c_j (ln k)^j, j = 0 .. degree, fitted with the
+// covariance of the points (generalised least squares): the count of a hierarchy of collapses nested
+// `degree` deep (docs/beyond.md) grows so, with no power of k. leading = c_degree and its error;
+// chi2, dof, its normal deviate, AICc and BIC as for the forms above. Needs degree + 2 points.
+// Throws std::invalid_argument.
+struct LogPolynomialFit {
+  int degree = 0;
+  double leading = 0, leading_error = 0;
+  double chi2 = 0;
+  int dof = 0;
+  double chi2_z = 0, aicc = 0, bic = 0;
+};
+LogPolynomialFit fit_log_polynomial(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& covariance, int degree);
+
 // The covariance of the means of several quantities measured on the same samples (the counts of
 // the same launches at every k): samples[r][i] is quantity i in sample r; C_ij = cov_r(x_i, x_j) / R
 // (sample covariance, R - 1 in its denominator). At least 2 samples, all of one length.

@@ -65,6 +65,15 @@ std::vector<CollapseEvent> collapse_events(const std::vector<Collision>& c, doub
   return out;
 }
 
+std::vector<Cascade> cascades(const std::vector<EventSpan>& events, double max_wait) {
+  std::vector<Cascade> out;
+  for (std::size_t n = 0; n < events.size(); ++n) {
+    if (n == 0 || events[n].begin - events[n - 1].end >= max_wait) out.push_back({n, 0});
+    ++out.back().events;
+  }
+  return out;
+}
+
 std::vector<double> collisions_before_remaining(const std::vector<Collision>& c, double t_star, const std::vector<double>& taus) {
   std::vector<double> out;
   for (double tau : taus) {

@@ -37,6 +37,18 @@ struct CollapseEvent {
 };
 std::vector<CollapseEvent> collapse_events(const std::vector<Collision>& c, double max_gap, std::size_t min_collisions);
 
+// Collapse events that set each other off. A soft collapse leaves a compressed cluster whose
+// relative speeds are a small fraction of its approach speed; the cluster collapses again some
+// tens of tau_c later. A cascade is a maximal run of events (in time order), each beginning less
+// than max_wait after the end of the one before: the index of its first event and its length.
+struct EventSpan {
+  double begin = 0, end = 0;
+};
+struct Cascade {
+  std::size_t first = 0, events = 0;
+};
+std::vector<Cascade> cascades(const std::vector<EventSpan>& events, double max_wait);
+
 // Hard spheres toward a collapse at t_star: the remaining time tau_n = t_star - t_n of collision n
 // (1-based). For each tau of `taus`, the number of collisions with tau_n >= tau (before the
 // sequence first comes within tau of the collapse); the count a cut-off at that tau leaves.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "analysis/asymptotic_forms.hpp"
@@ -30,23 +31,34 @@ struct FormsOutcome {
   nlohmann::json json;
   std::string markdown;
 };
-FormsOutcome compare_forms(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, double k_fit) {
+// The points with k >= k_fit and their covariance.
+struct Window {
+  std::vector<double> k, y;
+  Eigen::MatrixXd C;
+};
+Window window(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, double k_fit) {
   std::vector<Eigen::Index> use;
   for (std::size_t i = 0; i < k.size(); ++i)
     if (k[i] >= k_fit * (1 - 1e-9)) use.push_back(static_cast<Eigen::Index>(i));
+  Window w;
+  w.C.resize(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(use.size()));
+  for (std::size_t a = 0; a < use.size(); ++a) {
+    w.k.push_back(k[static_cast<std::size_t>(use[a])]);
+    w.y.push_back(y[static_cast<std::size_t>(use[a])]);
+    for (std::size_t b = 0; b < use.size(); ++b) w.C(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = C(use[a], use[b]);
+  }
+  return w;
+}
+
+FormsOutcome compare_forms(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, double k_fit) {
+  const Window w = window(k, y, C, k_fit);
   FormsOutcome out{nullptr, ""};
-  if (use.size() < 4) {
+  if (w.k.size() < 4) {
     out.markdown = fmt::format("Fewer than 4 values of k ≥ {}: the forms are not compared.\n", power_of_ten_text(k_fit));
     return out;
   }
-  std::vector<double> kk, yy;
-  Eigen::MatrixXd CC(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(use.size()));
-  for (std::size_t a = 0; a < use.size(); ++a) {
-    kk.push_back(k[static_cast<std::size_t>(use[a])]);
-    yy.push_back(y[static_cast<std::size_t>(use[a])]);
-    for (std::size_t b = 0; b < use.size(); ++b) CC(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = C(use[a], use[b]);
-  }
-  const FormComparison c = analysis::compare_asymptotic_forms(kk, yy, CC);
+  const std::vector<double>& kk = w.k;
+  const FormComparison c = analysis::compare_asymptotic_forms(kk, w.y, w.C);
   const double best_a = c.fits[static_cast<std::size_t>(c.best_aicc)].aicc, best_b = c.fits[static_cast<std::size_t>(c.best_bic)].bic;
   out.json = {{"k", kk}, {"forms", nlohmann::json::array()}, {"best_aicc", c.best_aicc}, {"best_bic", c.best_bic}};
   out.markdown = fmt::format("Forms fitted over k = {} … {} ({} points, covariance of the points included):\n\n"
@@ -86,6 +98,61 @@ FormsOutcome compare_forms(const std::vector<double>& k, const std::vector<doubl
   return out;
 }
 
+// The two forms that bend, c k^alpha (ln k)^beta and c (ln k)^beta, fitted over k >= k_lo for a
+// rising k_lo up to the series' end: a form that is the asymptotic law keeps its parameters as the
+// window moves up; an alpha that keeps falling says the power of k is the drift of the lower decades.
+std::string sliding_window_text(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, nlohmann::json& js) {
+  std::string md = fmt::format("The bending forms over k ≥ k_lo … {} (at least 5 points):\n\n| k_lo | c k^α (ln k)^β: α | β | χ² / dof | "
+                               "c (ln k)^β: β | χ² / dof | ΔAICc of c (ln k)^β |\n|---|---|---|---|---|---|---|\n",
+                               power_of_ten_text(k.back()));
+  js["sliding"] = nlohmann::json::array();
+  for (double k_lo = 1e5; k_lo <= 1e13 * (1 + 1e-9); k_lo *= 100) {
+    const Window w = window(k, y, C, k_lo);
+    if (w.k.size() < 5) break;
+    const FormComparison c = analysis::compare_asymptotic_forms(w.k, w.y, w.C);
+    const analysis::FormFit *pl = nullptr, *lp = nullptr;
+    for (const auto& f : c.fits) {
+      if (f.form == analysis::AsymptoticForm::PowerLawLog) pl = &f;
+      if (f.form == analysis::AsymptoticForm::PowerOfLog) lp = &f;
+    }
+    if (!pl || !lp) break;
+    md += fmt::format("| {} | {} | {} | {:.1f} / {} | {} | {:.1f} / {} | {:.1f} |\n", power_of_ten_text(k_lo), plus_minus(pl->param[1], pl->error[1], 4),
+                      plus_minus(pl->param[2], pl->error[2], 3), pl->chi2, pl->dof, plus_minus(lp->param[1], lp->error[1], 3), lp->chi2,
+                      lp->dof, lp->aicc - pl->aicc);
+    js["sliding"].push_back({{"k_lo", k_lo}, {"alpha", pl->param[1]}, {"alpha_error", pl->error[1]}, {"beta", pl->param[2]},
+                             {"beta_error", pl->error[2]}, {"chi2", pl->chi2}, {"dof", pl->dof}, {"log_power_beta", lp->param[1]},
+                             {"log_power_beta_error", lp->error[1]}, {"log_power_chi2", lp->chi2}, {"log_power_dof", lp->dof}});
+  }
+  return md;
+}
+
+// Polynomials in ln k of degree 1 .. 5 over k >= k_lo: a count that is a sum of collapse
+// generations nested up to J deep grows as a polynomial of degree J in ln k (no power of k). Their
+// chi^2 and AICc beside the best of the five forms, and the least degree that fits.
+std::string log_polynomials_text(const std::vector<double>& k, const std::vector<double>& y, const Eigen::MatrixXd& C, double k_lo,
+                                 nlohmann::json& js) {
+  const Window w = window(k, y, C, k_lo);
+  if (w.k.size() < 7) return "";
+  const FormComparison forms = analysis::compare_asymptotic_forms(w.k, w.y, w.C);
+  const analysis::FormFit& best = forms.fits[static_cast<std::size_t>(forms.best_aicc)];
+  std::string md = fmt::format("Polynomials in ln k, y = Σ_j c_j (ln k)^j up to degree J, over k = {} … {}, against the best of the five "
+                               "forms ({}, χ² = {:.1f} / {}):\n\n| J | c_J | χ² / dof | χ² deviate | ΔAICc to the best form |\n|---|---|---|---|---|\n",
+                               power_of_ten_text(w.k.front()), power_of_ten_text(w.k.back()), analysis::form_name(best.form), best.chi2, best.dof);
+  nlohmann::json rows = nlohmann::json::array();
+  int least = 0;
+  for (int J = 1; J <= 5 && static_cast<int>(w.k.size()) >= J + 4; ++J) {
+    const analysis::LogPolynomialFit f = analysis::fit_log_polynomial(w.k, w.y, w.C, J);
+    md += fmt::format("| {} | {:.4g} ± {:.2g} | {:.1f} / {} | {:.1f} | {:.1f} |\n", J, f.leading, f.leading_error, f.chi2, f.dof, f.chi2_z, f.aicc - best.aicc);
+    rows.push_back({{"degree", J}, {"leading", f.leading}, {"leading_error", f.leading_error}, {"chi2", f.chi2}, {"dof", f.dof},
+                    {"chi2_z", f.chi2_z}, {"delta_aicc", f.aicc - best.aicc}});
+    if (least == 0 && f.chi2_z < 2.0) least = J;
+  }
+  js["log_polynomials"] = {{"k_lo", k_lo}, {"fits", rows}, {"least_degree", least}};
+  md += least > 0 ? fmt::format("\nThe least degree that fits (χ² deviate below 2): J = {}.\n", least)
+                  : "\nNo degree up to 5 fits (χ² deviate below 2).\n";
+  return md;
+}
+
 std::string trend_text(const std::vector<LocalExponent>& local, nlohmann::json& js) {
   const analysis::SlopeTrend t = analysis::slope_trend(local);
   js["trend"] = {{"mean", t.mean}, {"mean_error", t.mean_error}, {"constant_chi2", t.constant_chi2}, {"constant_dof", t.constant_dof},
@@ -114,6 +181,26 @@ std::vector<CountSeries> free_series(const ReproduceFlags& o) {
       s.push_back({N, e, k_range, launches});
     }
   return s;
+}
+
+// A power of ln k, y = c (ln k)^beta, has the local exponent beta / ln k: the local exponent times
+// ln k at the middle of its interval is beta, constant for such a law; for y = c k^alpha (ln k)^beta
+// it is beta + alpha ln k, rising by alpha ln 10 per decade of k. Its weighted mean and trend.
+std::string log_power_text(const std::vector<LocalExponent>& local, nlohmann::json& js) {
+  std::vector<analysis::DataPoint> pts;
+  for (const auto& l : local) {
+    const double mid = 0.5 * std::log(l.k1 * l.k2);
+    pts.push_back({0.5 * std::log10(l.k1 * l.k2), l.alpha * mid, l.error * mid});
+  }
+  const analysis::SlopeTrend t = analysis::trend(pts);
+  js["log_power_trend"] = {{"mean", t.mean}, {"mean_error", t.mean_error}, {"constant_chi2", t.constant_chi2}, {"constant_dof", t.constant_dof},
+                           {"slope", t.slope}, {"slope_error", t.slope_error}};
+  if (!std::isfinite(t.slope)) return "";
+  return fmt::format("Local exponent × ln k (the β of (ln k)^β; constant for a power of ln k, rising by α ln 10 per decade of k for "
+                     "k^α (ln k)^β): constant: mean {}, χ² = {:.1f} on {} dof (deviate {:.1f}); linear trend {} per decade of k, "
+                     "an α of {} ({:.1f} standard errors from zero).\n",
+                     plus_minus(t.mean, t.mean_error, 2), t.constant_chi2, t.constant_dof, t.constant_z, plus_minus(t.slope, t.slope_error, 3),
+                     plus_minus(t.slope / std::log(10.0), t.slope_error / std::log(10.0), 4), t.slope / t.slope_error);
 }
 
 // Three bodies below e_c(3): the increments of n_tot per decade of k (errors from the paired
@@ -154,11 +241,29 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
                                "the covariance of the counts across k estimated from the launches. Counts are stored in --db (table "
                                "collapse_runs) and reused. Figure: `limit-free.png` (and .pdf).\n",
                                o.preset);
+  // The upper window: the forms fitted again over k >= 1e10 where a series reaches 1e16, to see
+  // whether the verdict is the asymptotic one or the drift of the lower decades.
+  const double k_upper = 1e10;
+  int drawn = 0;
   for (const CountSeries& s : free_series(o)) {
     std::vector<CollapseResult> results;
-    for (double k : parse_value_list(s.k, "--k")) {
-      results.push_back(stored_or_run_collapse(free_space_spec(s.N, s.e, k, s.launches, o), o, "limit-free"));
+    const std::vector<double> ks = parse_value_list(s.k, "--k");
+    for (double k : ks) {
+      const CollapseSpec spec = free_space_spec(s.N, s.e, k, s.launches, o);
+      if (!o.stored_only) {
+        results.push_back(stored_or_run_collapse(spec, o, "limit-free"));
+      } else if (std::optional<CollapseResult> r = ResultsStore(o.db, ResultsStore::Access::ReadOnly).find_collapse(spec)) {
+        results.push_back(*r);
+      }
     }
+    if (results.size() < ks.size())
+      o.partial->push_back(fmt::format("limit-free (N = {}, e = {:g}): {} of {} counts", s.N, s.e, results.size(), ks.size()));
+    if (results.size() < 2) {
+      md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\nFewer than two of its counts are stored (--stored-only): not drawn.\n", s.N,
+                        s.e, s.launches);
+      continue;
+    }
+    ++drawn;
     const std::size_t nk = results.size();
     std::vector<double> k, y, err;
     for (const auto& r : results) k.push_back(r.spec.params.k), y.push_back(r.n_tot_mean), err.push_back(r.n_tot_error);
@@ -171,20 +276,31 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
     const std::vector<LocalExponent> local = analysis::local_exponents(k, y, C);
     nlohmann::json js = {{"label", fmt::format("N = {}, e = {:g}", s.N, s.e)}, {"N", s.N}, {"e", s.e}, {"k", k}, {"y", y}, {"error", err},
                          {"launches", s.launches}, {"local", local_exponents_json(local)}};
-    md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\n| k | n_tot | local α to the next k |\n|---|---|---|\n", s.N, s.e, s.launches);
-    for (std::size_t i = 0; i < nk; ++i)
-      md += fmt::format("| {} | {} | {} |\n", power_of_ten_text(k[i]), plus_minus(y[i], err[i], s.N == 3 ? 3 : 1),
-                        i + 1 < nk ? plus_minus(local[i].alpha, local[i].error, 3) : "");
+    md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\n| k | n_tot | local α to the next k | × ln √(k1 k2) |\n|---|---|---|---|\n",
+                      s.N, s.e, s.launches);
+    for (std::size_t i = 0; i < nk; ++i) {
+      const double mid = i + 1 < nk ? 0.5 * std::log(k[i] * k[i + 1]) : 0.0;
+      md += fmt::format("| {} | {} | {} | {} |\n", power_of_ten_text(k[i]), plus_minus(y[i], err[i], s.N == 3 ? 3 : 1),
+                        i + 1 < nk ? plus_minus(local[i].alpha, local[i].error, 3) : "",
+                        i + 1 < nk ? plus_minus(local[i].alpha * mid, local[i].error * mid, 2) : "");
+    }
     if (s.N == 3) {
       md += "\n" + three_body_increments(k, y, C, s.e, js);
     } else {
-      md += "\n" + trend_text(local, js) + "\n";
+      md += "\n" + trend_text(local, js) + "\n" + log_power_text(local, js) + "\n";
       const FormsOutcome forms = compare_forms(k, y, C, k_fit);
       js["fit"] = forms.json;
       md += forms.markdown;
+      md += "\n" + log_polynomials_text(k, y, C, k_fit, js);
+      if (k.back() >= 1e16 * (1 - 1e-9)) {
+        const FormsOutcome upper = compare_forms(k, y, C, k_upper);
+        js["fit_upper"] = upper.json;
+        md += "\nThe upper decades alone. " + upper.markdown + "\n" + sliding_window_text(k, y, C, js);
+      }
     }
     plot["series"].push_back(js);
   }
+  if (o.stored_only && drawn == 0) throw NothingStored(fmt::format("no free-space series of limit-free has two counts in {}", o.db));
   FigureOutcome out{kExitOk, md, draw_figure(o, "limit-free", plot, "limit_exponents.py")};
   return out;
 }
@@ -229,6 +345,7 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
       const FormsOutcome forms = compare_forms(k, y, C, k_fit);
       js["fit"] = forms.json;
       md += forms.markdown;
+      md += "\n" + log_polynomials_text(k, y, C, k_fit, js);
       plot["series"].push_back(js);
     }
   FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),

@@ -36,6 +36,8 @@ constexpr double kEventGap = 10.0;  // a collapse event: successive gaps below 1
 constexpr std::size_t kEventMin = 3;
 constexpr int kSpeedDecades = 16;  // approach speeds of collapse events binned by decade down to 1e-16
 constexpr int kSpeedColumns = 14;  // the decades the report shows, 1e-1 .. 1e-14
+constexpr double kCascadeWait = 1000.0;  // a cascade: events less than 1000 tau_c apart
+constexpr int kWaitDecades = 10;        // waits between events (>= 10 tau_c by the event rule) by decade of wait / tau_c: 1e1, ..., >= 1e10
 
 std::vector<Collision> to_sequence(const std::vector<CollisionRecord>& recs) {
   std::vector<Collision> c;
@@ -157,7 +159,18 @@ Section hard_sequences(double e, int launches, const ReproduceFlags& o) {
 
 struct SoftLaunch {
   double n = 0, events = 0, in_events = 0, particles = 0;  // particles: summed over events
+  double cascades = 0;
 };
+
+// The ratio of two sums over launches, sum(a) / sum(b), and its error by the delta method.
+std::pair<double, double> ratio_of_sums(const std::vector<double>& a, const std::vector<double>& b) {
+  double sa = 0, sb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) sa += a[i], sb += b[i];
+  const double r = sb > 0 ? sa / sb : 0.0;
+  std::vector<double> lin;
+  for (std::size_t i = 0; i < a.size(); ++i) lin.push_back(sb > 0 ? (a[i] - r * b[i]) * static_cast<double>(a.size()) / sb : 0.0);
+  return {r, mean_and_error(lin).second};
+}
 
 Section soft_sequences(double e, const std::vector<double>& ks, int launches, const ReproduceFlags& o) {
   Section out;
@@ -168,8 +181,8 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
   md = fmt::format("\n### Soft spheres, e = {:g}, {} launches per k\n\n| k | n_tot | collapse events per launch | collisions per event | "
                    "particles per event | collisions in events | overlapping contacts |\n|---|---|---|---|---|---|---|\n",
                    e, launches);
-  std::vector<double> ev_mean, ev_err, per_mean, per_err;
-  std::string speed_rows;
+  std::vector<double> ev_mean, ev_err, per_mean, per_err, casc_mean, casc_err, epc_mean, epc_err_v;
+  std::string speed_rows, cascade_rows;
   for (double k : ks) {
     const CollapseSpec spec = free_space_spec(kN, e, k, launches, o);
     const double tau_c = contact_law(spec.params).tau_c;
@@ -178,6 +191,9 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
     double overlapping = 0, gaps_total = 0;
     // Events by the decade of their approach speed, 1e-kSpeedDecades .. 1 (slower ones in the first bin).
     std::vector<double> speed_hist(kSpeedDecades + 1, 0.0), rebound, duration, wait;
+    // Successive events of one cascade: the next approach speed against the speed the previous
+    // event left (log10 u_a(n+1) / u_r(n)) and against its approach speed; waits by decade.
+    std::vector<double> next_over_left, next_over_approach, wait_hist(kWaitDecades, 0.0);
     const auto speed_bin = [&](double u) {
       const double d = u > 0 ? std::floor(std::log10(u)) : -kSpeedDecades;
       speed_hist[static_cast<std::size_t>(std::clamp(d + kSpeedDecades, 0.0, static_cast<double>(kSpeedDecades)))] += 1;
@@ -200,6 +216,8 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
       for (double g : analysis::pair_gaps(seq)) bin(pair_hist, g);
       const std::vector<analysis::CollapseEvent> evs = analysis::collapse_events(seq, kEventGap * tau_c, kEventMin);
       double previous_end = -1.0;
+      std::vector<analysis::EventSpan> spans;
+      std::vector<double> u_in, u_out;
       for (const auto& ev : evs) {
         s.events += 1;
         s.in_events += static_cast<double>(ev.collisions);
@@ -214,26 +232,50 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
         speed_bin(first.speed_in);
         if (first.speed_in > 0) rebound.push_back(last.speed_out / first.speed_in);
         duration.push_back((end - first.t_begin) / tau_c);
-        if (previous_end >= 0) wait.push_back((first.t_begin - previous_end) / tau_c);
+        if (previous_end >= 0) {
+          const double w = (first.t_begin - previous_end) / tau_c;
+          wait.push_back(w);
+          const double d = w > 0 ? std::floor(std::log10(w)) : 1.0;
+          wait_hist[static_cast<std::size_t>(std::clamp(d, 1.0, static_cast<double>(kWaitDecades)) - 1.0)] += 1;
+        }
         previous_end = end;
+        spans.push_back({first.t_begin, end});
+        u_in.push_back(first.speed_in), u_out.push_back(last.speed_out);
+      }
+      for (const analysis::Cascade& c : analysis::cascades(spans, kCascadeWait * tau_c)) {
+        s.cascades += 1;
+        for (std::size_t j = c.first + 1; j < c.first + c.events; ++j) {
+          if (u_in[j] > 0 && u_out[j - 1] > 0) next_over_left.push_back(std::log10(u_in[j] / u_out[j - 1]));
+          if (u_in[j] > 0 && u_in[j - 1] > 0) next_over_approach.push_back(std::log10(u_in[j] / u_in[j - 1]));
+        }
       }
       L.push_back(s);
     });
-    std::vector<double> n, events, frac;
-    double in_sum = 0, ev_sum = 0, p_sum = 0;
+    std::vector<double> n, events, frac, in_events, casc;
+    double ev_sum = 0, p_sum = 0;
     for (const auto& s : L) {
       n.push_back(s.n), events.push_back(s.events), frac.push_back(s.n > 0 ? s.in_events / s.n : 0.0);
-      in_sum += s.in_events, ev_sum += s.events, p_sum += s.particles;
+      in_events.push_back(s.in_events), casc.push_back(s.cascades);
+      ev_sum += s.events, p_sum += s.particles;
     }
-    // Collisions per event as a ratio of sums; its error by the delta method over the launches.
-    const double per = ev_sum > 0 ? in_sum / ev_sum : 0.0;
-    std::vector<double> lin;
-    for (const auto& s : L) lin.push_back(ev_sum > 0 ? (s.in_events - per * s.events) * static_cast<double>(L.size()) / ev_sum : 0.0);
+    // Collisions per event and events per cascade as ratios of sums over the launches.
+    const auto [per, pe] = ratio_of_sums(in_events, events);
+    const auto [epc, epc_err] = ratio_of_sums(events, casc);
     const auto [nm, ne] = mean_and_error(n);
     const auto [em, ee] = mean_and_error(events);
     const auto [fm, fe] = mean_and_error(frac);
-    const double pe = mean_and_error(lin).second;
+    const auto [cm, ce] = mean_and_error(casc);
     ev_mean.push_back(em), ev_err.push_back(ee), per_mean.push_back(per), per_err.push_back(pe);
+    casc_mean.push_back(cm), casc_err.push_back(ce), epc_mean.push_back(epc), epc_err_v.push_back(epc_err);
+    double waits = 0;
+    for (double h : wait_hist) waits += h;
+    cascade_rows += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} |", power_of_ten_text(k), plus_minus(cm, ce, 1), plus_minus(epc, epc_err, 2),
+                                median(next_over_left), median(next_over_approach));
+    for (double& h : wait_hist) {
+      h /= std::max(1.0, waits);
+      cascade_rows += fmt::format(" {:.3f} |", h);
+    }
+    cascade_rows += "\n";
     md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {:.3f} |\n", power_of_ten_text(k), plus_minus(nm, ne, 1), plus_minus(em, ee, 1),
                       plus_minus(per, pe, 2), ev_sum > 0 ? p_sum / ev_sum : 0.0, plus_minus(fm, fe, 3), gaps_total > 0 ? overlapping / gaps_total : 0.0);
     for (double& h : speed_hist) h /= std::max<double>(1.0, static_cast<double>(L.size()));
@@ -245,7 +287,9 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
                                  {"per_event", per}, {"per_event_error", pe}, {"fraction_in_events", fm}, {"gap_hist", gap_hist},
                                  {"pair_gap_hist", pair_hist}, {"particles_hist", part_hist}, {"overlapping", gaps_total > 0 ? overlapping / gaps_total : 0.0},
                                  {"events_by_speed_decade", speed_hist}, {"median_rebound_ratio", median(rebound)},
-                                 {"median_duration_tau_c", median(duration)}, {"median_wait_tau_c", median(wait)}});
+                                 {"median_duration_tau_c", median(duration)}, {"median_wait_tau_c", median(wait)},
+                                 {"cascades", cm}, {"cascades_error", ce}, {"events_per_cascade", epc}, {"events_per_cascade_error", epc_err},
+                                 {"wait_decades", wait_hist}});
   }
   out.json["edges"] = edges;
   md += fmt::format("\nEach collapse event by its approach speed u_a (the relative speed of its first collision, launch speed 1): "
@@ -256,22 +300,37 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
   md += "\n|---|---|---|---|";
   for (int c = 0; c < kSpeedColumns; ++c) md += "---|";
   md += "\n" + speed_rows;
+  md += fmt::format("\nCascades: runs of events each beginning less than {:g} τ_c after the previous one ended. Per k: cascades per launch, "
+                    "events per cascade, the medians of log10 u_a(n+1) / u_r(n) (the next event's approach speed against the speed the "
+                    "previous one left) and of log10 u_a(n+1) / u_a(n) for successive events of a cascade, and the fraction of the "
+                    "waits between successive events in each decade of wait / τ_c (column 1e1: 1e1 ≤ wait < 1e2, the least wait the "
+                    "event rule allows; the last column holds the waits of 1e10 τ_c and more):\n\n| k | cascades | events per cascade | "
+                    "u_a(n+1)/u_r(n) | u_a(n+1)/u_a(n) |",
+                    kCascadeWait);
+  for (int d = 1; d <= kWaitDecades; ++d) md += fmt::format(" 1e{} |", d);
+  md += "\n|---|---|---|---|---|";
+  for (int d = 0; d < kWaitDecades; ++d) md += "---|";
+  md += "\n" + cascade_rows;
   if (ks.size() >= 2) {
     // A power of ln k, (ln k)^beta, has the local exponent beta / ln k: the events' exponent times
     // ln k at the middle of the interval is that beta, constant for such a law.
     md += "\nLocal exponents d ln / d ln k between successive k (errors as if independent), and the events' exponent times "
           "ln √(k1 k2): the β of (ln k)^β, constant if the events grow as a power of ln k:\n\n"
-          "| k1 → k2 | events per launch | × ln √(k1 k2) | collisions per event |\n|---|---|---|---|\n";
+          "| k1 → k2 | events per launch | × ln √(k1 k2) | collisions per event | cascades per launch | × ln √(k1 k2) | events per cascade |\n"
+          "|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i + 1 < ks.size(); ++i) {
       const double span = std::log(ks[i + 1] / ks[i]), mid = 0.5 * std::log(ks[i + 1] * ks[i]);
       const auto slope = [&](const std::vector<double>& m) { return std::log(m[i + 1] / m[i]) / span; };
       const auto slope_error = [&](const std::vector<double>& m, const std::vector<double>& er) {
         return std::hypot(er[i] / m[i], er[i + 1] / m[i + 1]) / span;
       };
-      md += fmt::format("| {} → {} | {} | {} | {} |\n", power_of_ten_text(ks[i]), power_of_ten_text(ks[i + 1]),
+      md += fmt::format("| {} → {} | {} | {} | {} | {} | {} | {} |\n", power_of_ten_text(ks[i]), power_of_ten_text(ks[i + 1]),
                         plus_minus(slope(ev_mean), slope_error(ev_mean, ev_err), 3),
                         plus_minus(slope(ev_mean) * mid, slope_error(ev_mean, ev_err) * mid, 2),
-                        plus_minus(slope(per_mean), slope_error(per_mean, per_err), 3));
+                        plus_minus(slope(per_mean), slope_error(per_mean, per_err), 3),
+                        plus_minus(slope(casc_mean), slope_error(casc_mean, casc_err), 3),
+                        plus_minus(slope(casc_mean) * mid, slope_error(casc_mean, casc_err) * mid, 2),
+                        plus_minus(slope(epc_mean), slope_error(epc_mean, epc_err_v), 3));
     }
   }
   return out;
