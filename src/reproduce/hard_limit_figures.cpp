@@ -295,7 +295,10 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
       if (k.back() >= 1e16 * (1 - 1e-9)) {
         const FormsOutcome upper = compare_forms(k, y, C, k_upper);
         js["fit_upper"] = upper.json;
-        md += "\nThe upper decades alone. " + upper.markdown + "\n" + sliding_window_text(k, y, C, js);
+        nlohmann::json upper_js;
+        md += "\nThe upper decades alone. " + upper.markdown + "\n" + log_polynomials_text(k, y, C, k_upper, upper_js) + "\n" +
+              sliding_window_text(k, y, C, js);
+        js["log_polynomials_upper"] = upper_js["log_polynomials"];
       }
     }
     plot["series"].push_back(js);
