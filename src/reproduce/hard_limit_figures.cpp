@@ -140,15 +140,19 @@ std::string log_polynomials_text(const std::vector<double>& k, const std::vector
                                power_of_ten_text(w.k.front()), power_of_ten_text(w.k.back()), analysis::form_name(best.form), best.chi2, best.dof);
   nlohmann::json rows = nlohmann::json::array();
   int least = 0;
+  double least_daicc = 0;
   for (int J = 1; J <= 5 && static_cast<int>(w.k.size()) >= J + 4; ++J) {
     const analysis::LogPolynomialFit f = analysis::fit_log_polynomial(w.k, w.y, w.C, J);
     md += fmt::format("| {} | {:.4g} ± {:.2g} | {:.1f} / {} | {:.1f} | {:.1f} |\n", J, f.leading, f.leading_error, f.chi2, f.dof, f.chi2_z, f.aicc - best.aicc);
     rows.push_back({{"degree", J}, {"leading", f.leading}, {"leading_error", f.leading_error}, {"chi2", f.chi2}, {"dof", f.dof},
                     {"chi2_z", f.chi2_z}, {"delta_aicc", f.aicc - best.aicc}});
-    if (least == 0 && f.chi2_z < 2.0) least = J;
+    if (least == 0 && f.chi2_z < 2.0) least = J, least_daicc = f.aicc - best.aicc;
   }
   js["log_polynomials"] = {{"k_lo", k_lo}, {"fits", rows}, {"least_degree", least}};
-  md += least > 0 ? fmt::format("\nThe least degree that fits (χ² deviate below 2): J = {}.\n", least)
+  const char* against = least_daicc < -4 ? "preferred to every one of the five forms"
+                        : least_daicc > 4 ? "the best of the five forms is preferred to it"
+                                          : "no conclusion between it and the best of the five forms";
+  md += least > 0 ? fmt::format("\nThe least degree that fits (χ² deviate below 2): J = {}, ΔAICc {:.1f}: {}.\n", least, least_daicc, against)
                   : "\nNo degree up to 5 fits (χ² deviate below 2).\n";
   return md;
 }
