@@ -169,7 +169,8 @@ std::string trend_text(const std::vector<LocalExponent>& local, nlohmann::json& 
 }
 
 // N = 3 below e_c(3), the check of the method (its count grows by a fixed number per decade of k,
-// Eq. ntot-log), then the many-body series at e = 0.3 and 0.5. The paper preset goes to k = 1e20,
+// Eq. ntot-log), then N = 6 and 8 at e = 0.3 (paper preset), then the many-body series at e = 0.3
+// and 0.5. The paper preset goes to k = 1e20,
 // which the exact engine resolves (docs/engines.md); the cheap series come first, so a run cut
 // short keeps them.
 std::vector<CountSeries> free_series(const ReproduceFlags& o) {
@@ -177,6 +178,10 @@ std::vector<CountSeries> free_series(const ReproduceFlags& o) {
   const std::string k_range = o.smoke() ? "1e4:1e7:x10" : o.paper() ? "1e4:1e20:x10" : "1e4:1e10:x10";
   if (!o.smoke())
     for (double e : {0.03, 0.05}) s.push_back({3, e, k_range, o.paper() ? 1000 : 200});
+  // The paper preset adds the fewest particles that collapse at e = 0.3 (n* = 6, Sec. III.B's
+  // e_c(n)) and two more: how the growth changes as the chain gains particles beyond one collapse.
+  if (o.paper())
+    for (int N : {6, 8}) s.push_back({N, 0.3, k_range, 2000});
   for (int N : o.smoke() ? std::vector<int>{10, 25} : o.paper() ? std::vector<int>{10, 25, 50, 100} : std::vector<int>{10, 25, 50})
     for (double e : {0.3, 0.5}) {
       const int launches = o.smoke()   ? 10
