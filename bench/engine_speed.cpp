@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "bench_cli.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
@@ -41,10 +41,10 @@ struct Timing {
   double wall_time() const { return wall; }
 };
 
-Timing time_run(const Workload& w, const std::string& engine, double T, std::uint64_t seed) {
+Timing time_run(const Workload& w, EngineKind engine, double T, std::uint64_t seed) {
   RunSpec spec;
   spec.params = ChainParameters{.N = 25, .k = w.k, .e = w.e};
-  spec.engine.name = engine;
+  spec.engine.kind = engine;
   spec.T = T;
   spec.transient = 0.1 * T;
   spec.seed = seed;
@@ -72,7 +72,7 @@ EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   const ChainParameters p{.N = 25, .k = w.k, .e = w.e};
   ThermalFloor floor(p.kT0, p.m, seed);
   EngineChoice exact;
-  exact.name = "exact";
+  exact.kind = EngineKind::Exact;
   auto engine = make_engine(exact, p, driven_column_initial_state(p, seed), &floor);
   NullEventSink none;
   const auto t0 = std::chrono::steady_clock::now();
@@ -120,7 +120,7 @@ LargeTiming time_large_column(const LargeColumn& w, int N, double e, double sett
   out.window.edge_searches -= before.edge_searches;
   ThermalFloor ref_floor(p.kT0, p.m, seed + 1);
   EngineChoice reference;
-  reference.name = "reference";
+  reference.kind = EngineKind::Reference;
   auto ref = make_engine(reference, p, settled, &ref_floor);
   t0 = std::chrono::steady_clock::now();
   ref->advance_to(settle + w.ref_window, none);
@@ -171,14 +171,14 @@ int main(int argc, char** argv) {
              "steps/coll", "ratio");
   std::vector<EngineOnly> work;  // per workload, for the table of prediction work
   for (const Workload& w : workloads) {
-    const Timing ex = fastest([&] { return time_run(w, "exact", w.T, seed); });
+    const Timing ex = fastest([&] { return time_run(w, EngineKind::Exact, w.T, seed); });
     const double ns_per_collision = 1e9 * ex.wall / static_cast<double>(ex.events);
     const EngineOnly engine = fastest([&] { return engine_only_per_collision(w, seed); });
     work.push_back(engine);
     // The reference at k = 1e10 (and everywhere with --quick): a short run, its wall time scaled
     // by simulated time (its cost is a fixed number of steps per unit time).
     const bool extrapolate = quick || w.k > 1e8;
-    const Timing ref = fastest([&] { return time_run(w, "reference", extrapolate ? short_T : w.T, seed); });
+    const Timing ref = fastest([&] { return time_run(w, EngineKind::Reference, extrapolate ? short_T : w.T, seed); });
     const double ref_wall = ref.wall * (ex.simulated / ref.simulated);
     const double steps_per_collision =
         static_cast<double>(ref.steps) / ref.simulated * ex.simulated / static_cast<double>(ex.events);

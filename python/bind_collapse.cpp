@@ -61,11 +61,10 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   const long long N = integer("N", 3, 2, 100000);
   const double e = real("e", 0.03);
   if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
-  const std::string engine = text("engine", "exact");
-  bool known = false;
-  for (const auto& n : engine_names()) known = known || n == engine;
-  if (!known) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: exact, reference, reference-located, hard", engine));
-  const bool hard = is_hard_sphere_engine(engine);
+  const std::string engine_text = text("engine", engines().front().name);
+  const EngineInfo* engine = find_engine(engine_text);
+  if (engine == nullptr) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: {}", engine_text, engine_name_list()));
+  const bool hard = engine->hard_spheres;
   const auto k_arg = take(args, "k");
   double k = std::numeric_limits<double>::infinity();
   if (hard) {
@@ -89,7 +88,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   if (!(a >= 0 && std::isfinite(a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", a));
   if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
   check_collapse_launch(static_cast<int>(N), a, v0, ChainParameters{}.d);
-  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0, has_fine_clock(engine));
+  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0, engine->fine_clock);
   if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
   const long long realizations = integer("realizations", 1000, 2, 10000000);
   const long long seed = integer("seed", 1, 0, 9223372036854775807LL);
@@ -129,7 +128,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   s.params.e = e;
   s.params.k = k;
   s.params.g = 0.0;
-  s.engine.name = engine;
+  s.engine.kind = engine->kind;
   s.engine.dt_factor = dt_factor;
   s.engine.hard = {tc, static_cast<std::uint64_t>(cc), ct};
   s.launch = {a, v0, dv0};
@@ -164,7 +163,7 @@ py::dict collapse_dict(const CollapseResult& r, const std::vector<CollisionRecor
   p["stop"] = rule_name(s.rule);
   p["realizations"] = s.realizations;
   p["seed"] = s.seed;
-  p["engine"] = s.engine.name;
+  p["engine"] = engine_name(s.engine.kind);
   p["dt_factor"] = s.engine.dt_factor;
   p["tc"] = s.engine.hard.tc;
   p["collapse_collisions"] = s.engine.hard.collapse_collisions;

@@ -43,7 +43,7 @@ py::dict spec_dict(const RunSpec& s) {
   p["T"] = s.T;
   p["transient"] = s.transient;
   p["seed"] = s.seed;
-  p["engine"] = s.engine.name;
+  p["engine"] = engine_name(s.engine.kind);
   p["dt_factor"] = s.engine.dt_factor;
   p["sample_interval"] = s.sample_interval;
   p["bins"] = s.bins;
@@ -155,8 +155,8 @@ py::dict run(const py::kwargs& kwargs) {
   if (audit && !audit->is_none() && !PyBool_Check(audit->ptr()))
     throw InputError(fmt::format("--audit: audit = {} is not True or False", std::string(py::repr(*audit))));
   if (audit && !audit->is_none() && audit->cast<bool>()) {
-    if (opts.spec.engine.name != "exact")
-      throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
+    if (!engine_info(opts.spec.engine.kind).has_audit)
+      throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", engine_name(opts.spec.engine.kind)));
     opts.spec.engine.audit = true;
   }
   if (opts.use_db) {

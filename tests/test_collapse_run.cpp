@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "engines/engine.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "simulation/collapse_run.hpp"
 #include "theory/collapse_theory.hpp"
 
@@ -108,7 +108,7 @@ TEST(CollapseRun, StrictRuleCountsAtLeastTheEndsRuleAndThreadsDoNotMatter) {
 // every launch finish.
 TEST(CollapseRun, HardSpheresCollapseUnlessTheTcModelIsOn) {
   CollapseSpec s = three_body(0.05, std::numeric_limits<double>::infinity(), 50);
-  s.engine.name = "hard";
+  s.engine.kind = EngineKind::Hard;
   const CollapseResult ends = run_collapse(s);
   EXPECT_GT(ends.collapsed, 0);
   s.rule = StopRule::Strict;

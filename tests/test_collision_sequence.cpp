@@ -21,7 +21,7 @@ CollapseSpec hard_launches(int N, double e, int launches) {
   spec.params.N = N;
   spec.params.e = e;
   spec.params.g = 0.0;
-  spec.engine.name = "hard";
+  spec.engine.kind = EngineKind::Hard;
   spec.realizations = launches;
   spec.threads = 2;
   return spec;

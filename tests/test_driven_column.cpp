@@ -113,7 +113,7 @@ TEST(DrivenColumn, ElasticColumnIsInGibbsEquilibrium) {
 // exponential gaps of mean kT0 / W_j and the hard-rod collision rates.
 TEST(DrivenColumn, HardSphereElasticColumnIsInGibbsEquilibrium) {
   RunSpec s = spec_for(3, 1.0, std::numeric_limits<double>::infinity(), 2e4, 7);
-  s.engine.name = "hard";
+  s.engine.kind = EngineKind::Hard;
   const RunResult r = run_driven_column(s);
   ChainParameters hard_limit = s.params;
   hard_limit.k = 1e14;  // the equilibrium integrals at k = 1e14 differ from k = infinity by ~1e-7

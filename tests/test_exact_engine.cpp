@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "engines/exact/exact_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 #include "model/driven_column.hpp"

@@ -40,7 +40,7 @@ constexpr int kReplicas = 8;
 RunResult grid_run(int N, double e, double k, const std::string& engine, double dt_factor, std::uint64_t seed) {
   RunSpec spec;
   spec.params = ChainParameters{.N = N, .k = k, .e = e};
-  spec.engine = EngineChoice{.name = engine, .dt_factor = dt_factor};
+  spec.engine = EngineChoice{.kind = find_engine(engine)->kind, .dt_factor = dt_factor};
   spec.T = N < 10 ? (k > 1e5 ? 1000.0 : 5000.0) : (k > 1e5 ? 200.0 : 500.0);
   spec.transient = 0.1 * spec.T;
   spec.seed = seed;
@@ -175,7 +175,7 @@ TEST_P(LargeCondensedColumn, AgreesWithReference) {
   auto run = [k](const std::string& engine, std::uint64_t seed) {
     RunSpec spec;
     spec.params = ChainParameters{.N = 150, .k = k, .e = 0.1};
-    spec.engine = EngineChoice{.name = engine, .dt_factor = k > 1e6 ? 300.0 : 1000.0};
+    spec.engine = EngineChoice{.kind = find_engine(engine)->kind, .dt_factor = k > 1e6 ? 300.0 : 1000.0};
     spec.T = 20.0;
     spec.transient = 30.0;
     spec.seed = seed;
@@ -231,7 +231,7 @@ TEST(LongExactEngine, FreeSpaceCollapseAtHighStiffnessAgreesWithReference) {
   s.realizations = 60;
   s.threads = 2;
   const CollapseResult exact = run_collapse(s);
-  s.engine.name = "reference";
+  s.engine.kind = EngineKind::Reference;
   const CollapseResult ref = run_collapse(s);
   ASSERT_EQ(exact.collapsed, 0);
   ASSERT_EQ(ref.collapsed, 0);

@@ -120,9 +120,9 @@ TEST(ResultsStore, ColumnsHoldStepTcAndBins) {
   s.transient = 0.5;
   s.bins = 256;
   store.insert_run(run_driven_column(s));  // exact
-  s.engine.name = "reference";
+  s.engine.kind = EngineKind::Reference;
   store.insert_run(run_driven_column(s));
-  s.engine.name = "hard";
+  s.engine.kind = EngineKind::Hard;
   s.engine.hard.tc = 1e-6;
   store.insert_run(run_driven_column(s));
   sqlite3* db = store.handle();

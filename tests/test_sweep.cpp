@@ -95,7 +95,7 @@ TEST(SweepGrid, HardEngineTakesNoKAndRepeatedValuesAreOnePoint) {
   ASSERT_EQ(points.size(), 3u);  // exact at two k, hard once
   int hard = 0;
   for (const auto& p : points)
-    if (p.spec.engine.name == "hard") {
+    if (p.spec.engine.kind == EngineKind::Hard) {
       ++hard;
       EXPECT_TRUE(std::isinf(p.spec.params.k));
     }

@@ -134,7 +134,8 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   auto& o = *impl_;
   const bool json_requested = o.json_option->count() > 0;
   const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
-  const bool hard = is_hard_sphere_engine(o.engine);
+  const EngineInfo* engine = find_engine(o.engine);  // nullptr: refused below
+  const bool hard = engine != nullptr && engine->hard_spheres;
   std::vector<double> es, ks;
   CollapseSpec base;
   try {
@@ -147,9 +148,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     es = parse_value_list(o.e, "--e");
     for (double e : es)
       if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
-    bool known = false;
-    for (const auto& n : engine_names()) known = known || n == o.engine;
-    if (!known) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: exact, reference, reference-located, hard", o.engine));
+    if (engine == nullptr) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: {}", o.engine, engine_name_list()));
     if (hard) {
       if (o.k_option->count() > 0) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
       ks = {std::numeric_limits<double>::infinity()};
@@ -166,7 +165,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     check_collapse_launch(o.N, o.a, o.v0, defaults.d);
     if (!hard)
       for (double e : es)
-        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0, has_fine_clock(o.engine));
+        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0, engine->fine_clock);
     base.setup = o.setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
     if (o.stop.empty()) o.stop = base.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
     if (o.stop != "ends" && o.stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", o.stop));
@@ -200,7 +199,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
 
   base.params.N = o.N;
   base.params.g = 0.0;
-  base.engine.name = o.engine;
+  base.engine.kind = engine->kind;
   base.engine.dt_factor = o.dt_factor;
   base.engine.hard = {o.tc, static_cast<std::uint64_t>(o.collapse_collisions), o.collapse_time};
   base.launch = {o.a, o.v0, o.dv0};

@@ -149,8 +149,8 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     opts = resolve_run_options(raw);
     opts.use_db = !impl.no_db;
     if (impl.audit) {
-      if (opts.spec.engine.name != "exact")
-        throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", opts.spec.engine.name));
+      if (!engine_info(opts.spec.engine.kind).has_audit)
+        throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", engine_name(opts.spec.engine.kind)));
       opts.spec.engine.audit = true;
     }
     // The store is written too: it may not be the config file, nor the JSON the store.

@@ -22,7 +22,7 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   const RunSpec& s = r.spec;
   const ChainParameters& p = s.params;
   std::string out;
-  out += fmt::format("granchain run: driven column, engine {}", s.engine.name);
+  out += fmt::format("granchain run: driven column, engine {}", engine_name(s.engine.kind));
   if (r.time_step > 0) out += fmt::format(" (dt = tau_c/{:g} = {:.4g})", s.engine.dt_factor, r.time_step);
   out += "\n";
   out += fmt::format("  N = {}, e = {:g}, k = {:g}, kT0 = {:g}   (m = {:g}, d = {:g}, g = {:g})\n", p.N, p.e, p.k, p.kT0, p.m, p.d, p.g);

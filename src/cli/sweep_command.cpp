@@ -299,15 +299,16 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       std::sort(order.begin(), order.end(), [](const SweepPoint* a, const SweepPoint* b) {
         const auto& x = a->spec;
         const auto& y = b->spec;
-        return std::tie(x.engine.name, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, a->replica) <
-               std::tie(y.engine.name, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, b->replica);
+        const std::string_view xe = engine_name(x.engine.kind), ye = engine_name(y.engine.kind);  // by name, as printed
+        return std::tie(xe, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, a->replica) <
+               std::tie(ye, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, b->replica);
       });
       for (const SweepPoint* p : order) {
         const auto it = summaries.find(p->key);
         if (it == summaries.end()) continue;  // failed
         const RunSpec& s = p->spec;
         fmt::print("{:>6} {:>8.6g} {:>10.3g} {:>6.4g} {:>8.6g} {:>10} {:>4} {:>10.5g} {:>9.2g} {:>6}\n", s.params.N, s.params.e,
-                   s.params.k, s.params.kT0, s.T, s.engine.name, p->replica, it->second.n_coll, it->second.n_coll_err,
+                   s.params.k, s.params.kT0, s.T, engine_name(s.engine.kind), p->replica, it->second.n_coll, it->second.n_coll_err,
                    it->second.id);
       }
     }

@@ -72,7 +72,8 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
       if (opt->count() > 0) raw[name] = RawValue{o.values[name], ""};
     if (o.setup != "driven" && o.setup != "free")
       throw InputError(fmt::format("--setup = '{}' is not a set-up; valid: driven, free", o.setup));
-    if (is_hard_sphere_engine(raw.count("engine") ? raw["engine"].text : ""))
+    const EngineInfo* named = raw.count("engine") ? find_engine(raw["engine"].text) : nullptr;
+    if (named != nullptr && named->hard_spheres)
       throw InputError("--engine: trace needs a soft engine (exact or reference); hard spheres have no overlaps to draw");
     spec.run = resolve_run_options(raw).spec;
     spec.free_space = o.setup == "free";
@@ -88,8 +89,8 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
     if (!(o.dt >= shortest_resolved_time(o.to)))
       throw InputError(fmt::format("--dt = {} is out of range; valid range: dt >= {:.3g} at to = {} (1e6 times the clock's "
                                    "resolution there)", o.dt, shortest_resolved_time(o.to), o.to));
-    const bool fine = has_fine_clock(spec.run.engine.name);
-    if (!is_hard_sphere_engine(spec.run.engine.name) &&
+    const bool fine = engine_info(spec.run.engine.kind).fine_clock;
+    if (!engine_info(spec.run.engine.kind).hard_spheres &&
         !(spec.run.params.k <= largest_resolved_k(spec.run.params.m, spec.run.params.e, o.to, fine)))
       throw InputError(fmt::format("--to = {} is out of range at k = {:g}: a contact must last at least 1e6 times the engine's "
                                    "clock resolution at to; valid range: k <= {:.3g} there", o.to, spec.run.params.k,

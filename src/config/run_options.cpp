@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "config/input_error.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 
 namespace granchain {
 
@@ -110,17 +110,14 @@ const std::vector<Definition>& definitions() {
                    o.spec.seed = static_cast<std::uint64_t>(s);
                  }});
     {
-      std::string names;
-      for (const auto& n : engine_names()) names += (names.empty() ? "" : ", ") + n;
-      d.push_back({{"engine", "time integrator; one of: " + names + "; default " + engine_names().front() +
+      const std::string names = engine_name_list();
+      d.push_back({{"engine", "time integrator; one of: " + names + "; default " + std::string(engines().front().name) +
                                   " (reference = the paper's 2nd-order Runge-Kutta with dt = tau_c/dt-factor)", "NAME"},
                    [names](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                     const std::string t = strip(v.text);
-                     for (const auto& n : engine_names())
-                       if (t == n) {
-                         o.spec.engine.name = n;
-                         return;
-                       }
+                     if (const EngineInfo* e = find_engine(strip(v.text))) {
+                       o.spec.engine.kind = e->kind;
+                       return;
+                     }
                      throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", v.text, where(v), names));
                    }});
     }
@@ -206,11 +203,12 @@ RawValue given_or(const std::map<std::string, RawValue>& raw, const std::string&
 // that, i.e. k <= m (pi^2 + ln^2 e) / (2 tau_min^2). At the paper's T = 1e4 that is k <= 1.49e12
 // for m = 1 on a double clock (the reference engines) and k <= 1.2e44 for the exact engine.
 void check_contact_time(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
-  if (is_hard_sphere_engine(o.spec.engine.name)) return;
+  const EngineInfo& engine = engine_info(o.spec.engine.kind);
+  if (engine.hard_spheres) return;
   const ChainParameters& p = o.spec.params;
   const double t_end = o.spec.transient + o.spec.T;
   const auto tau = [](double k, double m, double e) { return contact_time(k, damping_constant(k, e, m), m); };
-  const bool fine = has_fine_clock(o.spec.engine.name);
+  const bool fine = engine.fine_clock;
   const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= shortest_resolved_time(t, fine); };
   if (resolved(p.k, p.m, p.e, t_end)) return;
   const ChainParameters def;
@@ -236,7 +234,7 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
   }
   out_of_range(name, given_or(raw, name, name == "k" ? p.k : name == "m" ? p.m : o.spec.T),
                fmt::format("{}: a contact (tau_c = {:.3g} here) must last at least 1e6 times the {} engine's clock resolution "
-                           "at t = transient + T ({:.3g})", range, tau(p.k, p.m, p.e), o.spec.engine.name,
+                           "at t = transient + T ({:.3g})", range, tau(p.k, p.m, p.e), engine.name,
                            shortest_resolved_time(t_end, fine) / kResolutionSteps));
 }
 
@@ -335,7 +333,7 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
       throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", key, where(value), names));
     }
   }
-  if (is_hard_sphere_engine(o.spec.engine.name)) {
+  if (engine_info(o.spec.engine.kind).hard_spheres) {
     if (raw.count("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
     o.spec.params.k = std::numeric_limits<double>::infinity();
   } else if (raw.count("tc")) {

@@ -41,7 +41,6 @@ struct EngineCounters {
 class Engine {
  public:
   virtual ~Engine() = default;
-  virtual std::string_view name() const = 0;
   // Advances the system to exactly time t >= time(), reporting every event on the way in
   // time order. Throws UnphysicalStateError when the state stops making physical sense.
   virtual void advance_to(double t, EventSink& sink) = 0;

@@ -58,7 +58,6 @@ class HardSphereEngine final : public Engine {
   HardSphereEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
                    HardSphereOptions options = {});
 
-  std::string_view name() const override { return "hard"; }
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override;
   double time() const override { return now_; }

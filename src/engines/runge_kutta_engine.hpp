@@ -24,7 +24,6 @@ class RungeKuttaEngine final : public Engine {
   RungeKuttaEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor,
                    RungeKuttaOptions options = {});
 
-  std::string_view name() const override { return locate_ ? "reference-located" : "reference"; }
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override { return state_; }
   double time() const override { return state_.t; }

@@ -62,7 +62,7 @@ Section hard_sequences(double e, int launches, const ReproduceFlags& o) {
   std::vector<double> taus;
   for (int j = 2; j <= 16; ++j) taus.push_back(std::pow(10.0, -0.5 * j));  // 1e-1 .. 1e-8
   CollapseSpec spec = free_space_spec(kN, e, std::numeric_limits<double>::infinity(), launches, o);
-  spec.engine.name = "hard";
+  spec.engine.kind = EngineKind::Hard;
   const std::size_t last = spec.engine.hard.collapse_collisions;
   std::vector<std::vector<double>> counts;  // per collapsed launch, n(tau)
   std::vector<double> ln_q, beta, particles;

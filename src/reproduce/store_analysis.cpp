@@ -75,7 +75,7 @@ double number_or_nan(const nlohmann::json& x) { return x.is_number() ? x.get<dou
 // The trajectory a stored run followed (simulation/run_key.hpp), from its columns.
 std::string trajectory_of_row(const nlohmann::json& row) {
   RunSpec s;
-  s.engine.name = row.at("engine").get<std::string>();
+  s.engine.kind = stored_engine_kind(row.at("engine").get<std::string>());
   s.params.N = row.at("N").get<int>();
   s.params.e = row.at("e").get<double>();
   s.params.k = number_or_nan(row.at("k"));

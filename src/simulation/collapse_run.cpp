@@ -109,7 +109,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
   auto engine = make_engine(spec.engine, p, initial, floor);
   CollapseObserver obs(p.N, r, keep_records, p.e);
   bool done = !any_overlap(initial, p.d) && stop_rule_holds(spec, initial);
-  const bool hard = is_hard_sphere_engine(spec.engine.name);
+  const bool hard = engine_info(spec.engine.kind).hard_spheres;
   try {
     while (!done) {
       obs.clear_stop();

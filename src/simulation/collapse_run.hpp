@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/collapse_setups.hpp"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "analysis/blocking.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
 #include "observables/profile_sampler.hpp"
 

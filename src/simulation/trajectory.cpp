@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "engines/engine.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
 #include "model/random.hpp"

@@ -16,7 +16,7 @@ namespace {
 // The values of kCollapseIdentityColumns for a collapse count, in that order, from index c on.
 void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
   q.bind(c++, std::string(setup_name(s.setup)));
-  q.bind(c++, s.engine.name);
+  q.bind(c++, std::string(engine_name(s.engine.kind)));
   q.bind(c++, static_cast<std::int64_t>(s.params.N));
   q.bind(c++, s.params.e);
   q.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)

@@ -31,7 +31,7 @@ nlohmann::json collapse_result_to_json(const CollapseResult& r) {
             {"stop", rule_name(s.rule)},
             {"realizations", s.realizations},
             {"seed", s.seed},
-            {"engine", s.engine.name},
+            {"engine", engine_name(s.engine.kind)},
             {"dt_factor", s.engine.dt_factor},
             {"tc", s.engine.hard.tc}}},
           {"derived", {{"D", number_or_null(r.law.D)}, {"tau_c", r.law.tau_c}}},

@@ -344,7 +344,7 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     run.bind(c++, utc_now());
     run.bind(c++, std::string(code_version()));
     run.bind(c++, std::string("driven_column"));
-    run.bind(c++, s.engine.name);
+    run.bind(c++, std::string(engine_name(s.engine.kind)));
     run.bind(c++, static_cast<std::int64_t>(s.params.N));
     run.bind(c++, s.params.e);
     run.bind(c++, s.params.k);
@@ -376,7 +376,7 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     run.bind(c++, static_cast<std::int64_t>(r.events));
     run.bind(c++, r.wall_seconds);
     run.bind(c++, run_result_to_json(r).dump());
-    if (s.engine.name == "hard") run.bind(c++, s.engine.hard.tc);
+    if (engine_info(s.engine.kind).hard_spheres) run.bind(c++, s.engine.hard.tc);
     else run.bind_null(c++);  // the TC time is the hard engine's
     run.bind(c++, static_cast<std::int64_t>(s.bins));
     run.run();

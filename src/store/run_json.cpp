@@ -25,7 +25,7 @@ json run_spec_to_json(const RunSpec& s) {
               {"T", s.T},
               {"transient", s.transient},
               {"seed", s.seed},
-              {"engine", s.engine.name},
+              {"engine", engine_name(s.engine.kind)},
               {"dt_factor", s.engine.dt_factor},
               {"sample_interval", s.sample_interval},
               {"bins", s.bins},
@@ -100,7 +100,7 @@ RunResult run_result_from_json(const json& j) {
   s.T = p.at("T").get<double>();
   s.transient = p.at("transient").get<double>();
   s.seed = p.at("seed").get<std::uint64_t>();
-  s.engine.name = p.at("engine").get<std::string>();
+  s.engine.kind = stored_engine_kind(p.at("engine").get<std::string>());
   s.engine.dt_factor = p.at("dt_factor").get<double>();
   s.engine.hard.tc = p.value("tc", 0.0);
   s.sample_interval = p.at("sample_interval").get<double>();

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
 
 namespace granchain {
@@ -39,8 +39,8 @@ double exact_log_rate(double N, double e, double k, double T0) {
 double estimate_cost_seconds(const RunSpec& s) {
   const ChainParameters& p = s.params;
   const double time = s.T + s.transient;
-  if (is_hard_sphere_engine(s.engine.name)) return kRunOverheadSeconds + 3e-7 * p.N * time * (10.0 + 120.0 * (1.0 - p.e));
-  if (s.engine.name == "exact") return kRunOverheadSeconds + time * std::exp(exact_log_rate(p.N, p.e, p.k, p.kT0));
+  if (engine_info(s.engine.kind).hard_spheres) return kRunOverheadSeconds + 3e-7 * p.N * time * (10.0 + 120.0 * (1.0 - p.e));
+  if (s.engine.kind == EngineKind::Exact) return kRunOverheadSeconds + time * std::exp(exact_log_rate(p.N, p.e, p.k, p.kT0));
   const double steps = time * s.engine.dt_factor / contact_law(p).tau_c;
   return kRunOverheadSeconds + steps * (5e-9 * p.N + 4e-8);
 }

@@ -8,7 +8,7 @@
 
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
-#include "engines/engine_factory.hpp"
+#include "engines/engine_registry.hpp"
 #include "model/random.hpp"
 #include "simulation/run_key.hpp"
 
@@ -63,10 +63,15 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   const auto es = grid_values(def, "e", "0.9");
   const auto ks = grid_values(def, "k", "100000");
   const auto T0s = grid_values(def, "T0", "1");
-  const auto engines = grid_values(def, "engine", engine_names().front());
+  const auto engines = grid_values(def, "engine", granchain::engines().front().name);
+  // An unknown name is refused by resolve_run_options below, with the valid ones.
+  const auto is_hard = [](const std::string& name) {
+    const EngineInfo* e = find_engine(name);
+    return e != nullptr && e->hard_spheres;
+  };
   const bool T_given = def.raw.count("T") > 0;
   const auto Ts = T_given ? grid_values(def, "T", "") : std::vector<std::string>{""};
-  const bool any_hard = std::any_of(engines.begin(), engines.end(), is_hard_sphere_engine);
+  const bool any_hard = std::any_of(engines.begin(), engines.end(), is_hard);
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
 
   std::vector<SweepPoint> points;
@@ -80,7 +85,7 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
     throw InputError(fmt::format("the sweep has {:.4g} points (values of --N x --e x --k x --T0 x --T x --engine x --replicas); valid: at most {:.0f}",
                                  expected, kMaxPoints));
   for (const auto& engine : engines) {
-    const bool hard = is_hard_sphere_engine(engine);
+    const bool hard = is_hard(engine);
     for (const auto& N : Ns)
       for (const auto& e : es)
         for (std::size_t ik = 0; ik < (hard ? 1 : ks.size()); ++ik)

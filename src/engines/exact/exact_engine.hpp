@@ -46,7 +46,6 @@ class ExactEngine final : public Engine {
   // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
   ExactEngine(const ChainParameters& p, const ChainState& initial, FloorDrive* floor, ExactOptions options = {});
 
-  std::string_view name() const override { return "exact"; }
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override;
   double time() const override { return now_.value(); }

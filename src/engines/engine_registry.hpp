@@ -1,0 +1,52 @@
+#pragma once
+// What an engine is, written once: its name (on the command line, in stores and point keys),
+// whether it treats the spheres as hard, whether it steps in time (dt = tau_c / dt_factor, then part
+// of a run's identity), whether its clock is a FineTime, whether it has an audit, and how to make
+// one. The layers ask this registry (by EngineKind) instead of comparing names; names appear only
+// where text is read or written.
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engines/engine.hpp"
+#include "engines/hard_sphere_engine.hpp"
+#include "model/chain_parameters.hpp"
+#include "model/floor.hpp"
+
+namespace granchain {
+
+enum class EngineKind { Exact, Reference, ReferenceLocated, Hard };
+
+struct EngineChoice {
+  EngineKind kind = EngineKind::Exact;  // the registry's first engine is the default
+  double dt_factor = 100.0;             // time-stepped engines: dt = tau_c / dt_factor
+  HardSphereOptions hard;               // the hard-sphere engine (k = infinity): TC model, collapse watch
+  bool audit = false;                   // engines with an audit: check every overlap and gap between events (slow)
+};
+
+struct EngineInfo {
+  EngineKind kind;
+  const char* name;          // as typed on the command line and stored
+  bool hard_spheres;         // k = infinity, instantaneous collisions (TC model and collapse watch)
+  bool time_stepped;         // fixed steps dt = tau_c / dt_factor: dt_factor is part of a run's identity
+  bool fine_clock;           // FineTime clock, resolving 2^-53 ulp(t) at time t; otherwise ulp(t)
+  bool has_audit;            // --audit checks it
+  std::unique_ptr<Engine> (*make)(const EngineChoice&, const ChainParameters&, const ChainState&, FloorDrive*);
+};
+
+// Every engine, the default first.
+const std::vector<EngineInfo>& engines();
+const EngineInfo& engine_info(EngineKind kind);
+inline const char* engine_name(EngineKind kind) { return engine_info(kind).name; }
+// The engine of that name, or nullptr.
+const EngineInfo* find_engine(std::string_view name);
+// The engine of a name read back from a store or a JSON file; throws std::invalid_argument.
+EngineKind stored_engine_kind(std::string_view name);
+// "exact, reference, reference-located, hard": for help texts and error messages.
+std::string engine_name_list();
+
+std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParameters& p, const ChainState& initial,
+                                    FloorDrive* floor);
+
+}  // namespace granchain
