@@ -185,3 +185,45 @@ TEST(CollapseRun, OneBodyMeansEveryRelativeVelocityBelowResolution) {
   spec.setup = CollapseSetup::Wall;
   EXPECT_FALSE(moves_as_one_body(spec, s));
 }
+
+// The states handed to a ClosedStateLog: one at each instant when the last open contact closes,
+// in record order, at the time that contact ended, with every gap open (z_{i+1} - z_i >= d up to
+// round-off of the heights) and the launch's momentum (free space conserves it); each launch's
+// states follow its records. N = 10, e = 0.3, k = 1e8, 6 launches on two threads.
+TEST(CollapseRun, ClosedStatesFollowTheirRecordsWithEveryContactOpenAndMomentumKept) {
+  CollapseSpec s;
+  s.params.N = 10;
+  s.params.e = 0.3;
+  s.params.k = 1e8;
+  s.params.g = 0.0;
+  s.realizations = 6;
+  s.threads = 2;
+  std::vector<CollisionRecord> recs;
+  int launches = 0;
+  std::size_t states_seen = 0;
+  run_collapse(s, [&](const std::vector<CollisionRecord>& r) { recs = r; }, {},
+               [&](const std::vector<ClosedState>& states) {
+                 ASSERT_FALSE(recs.empty());
+                 ASSERT_FALSE(states.empty());
+                 const ChainState launch = collapse_initial_state(s, recs.front().realization);
+                 double p0 = 0;
+                 for (double v : launch.v) p0 += v;
+                 std::size_t previous = 0;
+                 for (std::size_t n = 0; n < states.size(); ++n) {
+                   const ClosedState& c = states[n];
+                   ASSERT_LT(c.after, recs.size());
+                   if (n > 0) EXPECT_GT(c.after, previous);
+                   previous = c.after;
+                   EXPECT_NEAR(c.state.t, recs[c.after].t_end, 1e-12 * (1 + c.state.t));
+                   double p = 0;
+                   for (double v : c.state.v) p += v;
+                   EXPECT_NEAR(p, p0, 1e-12 * s.params.N);
+                   for (std::size_t i = 0; i + 1 < c.state.z.size(); ++i)
+                     EXPECT_GE(c.state.z[i + 1] - c.state.z[i], s.params.d - 1e-12 * (1 + std::abs(c.state.z[i])));
+                 }
+                 states_seen += states.size();
+                 ++launches;
+               });
+  EXPECT_EQ(launches, 6);
+  EXPECT_GT(states_seen, 6u * 10u);
+}

@@ -191,6 +191,10 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
     double overlapping = 0, gaps_total = 0;
     // Events by the decade of their approach speed, 1e-kSpeedDecades .. 1 (slower ones in the first bin).
     std::vector<double> speed_hist(kSpeedDecades + 1, 0.0), rebound, duration, wait;
+    // The cluster an event leaves, read from the chain when its last contact has ended: the
+    // kinetic energy of its particles' motion about their centre of mass over the approach energy
+    // m u_a^2 / 4 of its first collision, and the sum of its gaps over u_a tau_c.
+    std::vector<double> internal_energy, spread;
     // Successive events of one cascade: the next approach speed against the speed the previous
     // event left (log10 u_a(n+1) / u_r(n)) and against its approach speed; waits by decade.
     std::vector<double> next_over_left, next_over_approach, wait_hist(kWaitDecades, 0.0);
@@ -204,7 +208,10 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
       h[static_cast<std::size_t>(it - edges.begin())] += 1;
     };
     if (!o.quiet) fmt::print(stderr, "reproduce intervals: N = {}, e = {:g}, k = {:g}, {} launches\n", kN, e, k, launches);
-    run_collapse(spec, [&](const std::vector<CollisionRecord>& recs) {
+    std::vector<CollisionRecord> current;
+    const auto keep = [&](const std::vector<CollisionRecord>& recs) { current = recs; };
+    run_collapse(spec, keep, {}, [&](const std::vector<ClosedState>& states) {
+      const std::vector<CollisionRecord>& recs = current;
       const std::vector<Collision> seq = to_sequence(recs);
       SoftLaunch s;
       s.n = static_cast<double>(seq.size());
@@ -231,6 +238,22 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
         for (std::size_t c = ev.first; c < ev.first + ev.collisions; ++c) end = std::max(end, recs[c].t_end);
         speed_bin(first.speed_in);
         if (first.speed_in > 0) rebound.push_back(last.speed_out / first.speed_in);
+        const std::size_t last_index = ev.first + ev.collisions - 1;
+        const auto at = std::lower_bound(states.begin(), states.end(), last_index,
+                                         [](const ClosedState& c, std::size_t j) { return c.after < j; });
+        if (first.speed_in > 0 && at != states.end() && at->after == last_index) {
+          int lo = kN, hi = -1;  // 0-based particles: pair i (1-based) joins particles i - 1 and i
+          for (std::size_t c = ev.first; c <= last_index; ++c) lo = std::min(lo, recs[c].i - 1), hi = std::max(hi, recs[c].i);
+          const ChainState& cs = at->state;
+          double v_mean = 0;
+          for (int j = lo; j <= hi; ++j) v_mean += cs.v[static_cast<std::size_t>(j)];
+          v_mean /= hi - lo + 1;
+          double e_int = 0;
+          for (int j = lo; j <= hi; ++j) e_int += 0.5 * spec.params.m * std::pow(cs.v[static_cast<std::size_t>(j)] - v_mean, 2);
+          internal_energy.push_back(e_int / (0.25 * spec.params.m * first.speed_in * first.speed_in));
+          const double gaps = cs.z[static_cast<std::size_t>(hi)] - cs.z[static_cast<std::size_t>(lo)] - (hi - lo) * spec.params.d;
+          spread.push_back(gaps / (first.speed_in * tau_c));
+        }
         duration.push_back((end - first.t_begin) / tau_c);
         if (previous_end >= 0) {
           const double w = (first.t_begin - previous_end) / tau_c;
@@ -279,7 +302,8 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
     md += fmt::format("| {} | {} | {} | {} | {:.1f} | {} | {:.3f} |\n", power_of_ten_text(k), plus_minus(nm, ne, 1), plus_minus(em, ee, 1),
                       plus_minus(per, pe, 2), ev_sum > 0 ? p_sum / ev_sum : 0.0, plus_minus(fm, fe, 3), gaps_total > 0 ? overlapping / gaps_total : 0.0);
     for (double& h : speed_hist) h /= std::max<double>(1.0, static_cast<double>(L.size()));
-    speed_rows += fmt::format("| {} | {:.3g} | {:.1f} | {:.1f} |", power_of_ten_text(k), median(rebound), median(duration), median(wait));
+    speed_rows += fmt::format("| {} | {:.3g} | {:.3g} | {:.3g} | {:.1f} | {:.1f} |", power_of_ten_text(k), median(rebound), median(internal_energy),
+                              median(spread), median(duration), median(wait));
     for (int d = kSpeedDecades - 1; d >= kSpeedDecades - kSpeedColumns; --d) speed_rows += fmt::format(" {:.1f} |", speed_hist[static_cast<std::size_t>(d)]);
     speed_rows += "\n";
     for (double& h : gap_hist) h /= std::max(1.0, gaps_total);
@@ -288,16 +312,20 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
                                  {"pair_gap_hist", pair_hist}, {"particles_hist", part_hist}, {"overlapping", gaps_total > 0 ? overlapping / gaps_total : 0.0},
                                  {"events_by_speed_decade", speed_hist}, {"median_rebound_ratio", median(rebound)},
                                  {"median_duration_tau_c", median(duration)}, {"median_wait_tau_c", median(wait)},
+                                 {"median_internal_energy", median(internal_energy)}, {"median_gaps_over_ua_tau_c", median(spread)},
                                  {"cascades", cm}, {"cascades_error", ce}, {"events_per_cascade", epc}, {"events_per_cascade_error", epc_err},
                                  {"wait_decades", wait_hist}});
   }
   out.json["edges"] = edges;
   md += fmt::format("\nEach collapse event by its approach speed u_a (the relative speed of its first collision, launch speed 1): "
-                    "the median ratio u_r / u_a of the speed its last collision leaves to u_a, its median duration and the median "
-                    "wait since the previous event (τ_c), and the events per launch in each decade of u_a (column 1e-m: 1e-m ≤ u_a < 1e-(m-1)):\n\n| k | u_r / u_a | "
-                    "duration | wait |");
+                    "the median ratio u_r / u_a of the speed its last collision leaves to u_a; the cluster it leaves, read from the chain "
+                    "when its last contact has ended (events during which another contact stays open elsewhere are left out): the "
+                    "median kinetic energy of its particles about their centre of mass over the approach energy m u_a² / 4, and the "
+                    "median sum of its gaps over u_a τ_c; its median duration and the median wait since the previous event (τ_c); "
+                    "and the events per launch in each decade of u_a (column 1e-m: 1e-m ≤ u_a < 1e-(m-1)):\n\n| k | u_r / u_a | "
+                    "internal energy / (m u_a² / 4) | gaps / (u_a τ_c) | duration | wait |");
   for (int c = 0; c < kSpeedColumns; ++c) md += fmt::format(" 1e{} |", -c - 1);  // the decade [1e-(c+1), 1e-c)
-  md += "\n|---|---|---|---|";
+  md += "\n|---|---|---|---|---|---|";
   for (int c = 0; c < kSpeedColumns; ++c) md += "---|";
   md += "\n" + speed_rows;
   md += fmt::format("\nCascades: runs of events each beginning less than {:g} τ_c after the previous one ended. Per k: cascades per launch, "

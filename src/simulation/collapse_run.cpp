@@ -98,9 +98,10 @@ bool any_overlap(const ChainState& s, double d) {
 struct RealizationRun {
   RealizationOutcome outcome;
   std::vector<CollisionRecord> records;
+  std::vector<ClosedState> states;
 };
 
-RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_records) {
+RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_records, bool keep_states) {
   ChainParameters p = spec.params;
   p.g = 0.0;
   const ChainState initial = collapse_initial_state(spec, r);
@@ -110,6 +111,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
   CollapseObserver obs(p.N, r, keep_records, p.e);
   bool done = !any_overlap(initial, p.d) && stop_rule_holds(spec, initial);
   const bool hard = engine_info(spec.engine.kind).hard_spheres;
+  std::vector<ClosedState> states;
   try {
     while (!done) {
       obs.clear_stop();
@@ -123,6 +125,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
                                                "({} collisions)", r, spec.t_max, obs.outcome.n_tot()));
       }
       if (obs.open_contacts() != 0) continue;
+      if (keep_states && !obs.records.empty()) states.push_back({obs.records.size() - 1, engine->state()});
       done = stop_rule_holds(spec, engine->state());
       // Soft spheres only: hard spheres that become one body are an inelastic collapse, which
       // their engine's collapse watch reports.
@@ -135,7 +138,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
     obs.outcome.collapsed = true;
     obs.outcome.t_stop = c.time();
   }
-  return {obs.outcome, std::move(obs.records)};
+  return {obs.outcome, std::move(obs.records), std::move(states)};
 }
 
 }  // namespace
@@ -146,7 +149,8 @@ ChainState collapse_initial_state(const CollapseSpec& spec, int r) {
                                                 : wall_throw_state(spec.params, spec.launch, seed);
 }
 
-CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, const LaunchProgress& progress) {
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, const LaunchProgress& progress,
+                            const ClosedStateLog& states_log) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int R = spec.realizations;
   CollapseResult res;
@@ -160,6 +164,8 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
   const int threads = std::max(1, std::min(spec.threads, R));
   const int window = 4 * threads;
   std::vector<std::vector<CollisionRecord>> pending(R);
+  std::vector<std::vector<ClosedState>> pending_states(R);
+  const bool keep_states = log && states_log;
   std::vector<char> finished(R, 0);
   std::mutex mu;
   std::condition_variable cv;
@@ -176,10 +182,11 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
         r = next++;
       }
       try {
-        RealizationRun run = run_realization(spec, r, static_cast<bool>(log));
+        RealizationRun run = run_realization(spec, r, static_cast<bool>(log), keep_states);
         std::lock_guard lock(mu);
         res.outcomes[r] = run.outcome;
         pending[r] = std::move(run.records);
+        pending_states[r] = std::move(run.states);
         finished[r] = 1;
       } catch (...) {
         std::lock_guard lock(mu);
@@ -196,12 +203,14 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
       cv.wait(lock, [&] { return failure || finished[flushed]; });
       if (failure) break;
       std::vector<CollisionRecord> records = std::move(pending[flushed]);
+      std::vector<ClosedState> states = std::move(pending_states[flushed]);
       const std::uint64_t collisions = res.outcomes[flushed].particle_collisions;
       ++flushed;
       cv.notify_all();
       if (log || progress) {
         lock.unlock();
         if (log) log(records);
+        if (keep_states) states_log(states);
         if (progress) progress(flushed, collisions);
         lock.lock();
       }

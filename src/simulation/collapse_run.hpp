@@ -92,7 +92,17 @@ using CollisionLog = std::function<void(const std::vector<CollisionRecord>&)>;
 // Progress: called on the calling thread after each launch is handed over (in launch order), with
 // the launches done so far and the particle collisions of the one just done.
 using LaunchProgress = std::function<void(int done, std::uint64_t collisions)>;
-CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {}, const LaunchProgress& progress = {});
+// The chain at an instant when no contact is open, right after the contact end (or wall hit) of
+// record `after` (0-based, in the realisation's records): what a collision sequence leaves.
+struct ClosedState {
+  std::size_t after = 0;
+  ChainState state;
+};
+// With a ClosedStateLog (and a CollisionLog), each realisation's closed states are handed over
+// after its records, in the same order; keeping them costs one state per collision.
+using ClosedStateLog = std::function<void(const std::vector<ClosedState>&)>;
+CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {}, const LaunchProgress& progress = {},
+                            const ClosedStateLog& states = {});
 
 // How n_tot changes between two counts of the same launches at k1 < k2 (same spec otherwise).
 struct KSlope {
