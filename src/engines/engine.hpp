@@ -68,4 +68,19 @@ class UnphysicalStateError : public std::runtime_error {
   int b_;
 };
 
+// An engine that cannot advance past an inelastic collapse (hard spheres: collisions accumulate
+// in a vanishing time) reports it through the interface with this error, a kind of
+// UnphysicalStateError that a driver counting collapses may catch.
+class InelasticCollapseError : public UnphysicalStateError {
+ public:
+  InelasticCollapseError(double t, int first_particle, int last_particle, std::uint64_t collisions,
+                         const std::string& what)
+      : UnphysicalStateError(t, first_particle, last_particle, what), collisions_(collisions) {}
+  // Collisions (floor and wall hits included) since the engine started, the collapse included.
+  std::uint64_t collisions() const { return collisions_; }
+
+ private:
+  std::uint64_t collisions_;
+};
+
 }  // namespace granchain

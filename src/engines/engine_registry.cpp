@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "engines/exact/exact_engine.hpp"
+#include "engines/hard_sphere_engine.hpp"
 #include "engines/runge_kutta_engine.hpp"
 
 namespace granchain {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engines/engine.hpp"
-#include "engines/hard_sphere_engine.hpp"
+#include "engines/hard_sphere_options.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 

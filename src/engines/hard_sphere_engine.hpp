@@ -23,33 +23,12 @@
 
 #include "engines/chain_schedule.hpp"
 #include "engines/engine.hpp"
+#include "engines/hard_sphere_options.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
 
 namespace granchain {
 
-struct HardSphereOptions {
-  // TC model: a collision within tc of the previous collision of either particle is elastic.
-  // 0 switches it off.
-  double tc = 0.0;
-  // Collapse: `collapse_collisions` consecutive collisions (floor and wall hits included)
-  // inside a time span shorter than `collapse_time`.
-  std::uint64_t collapse_collisions = 1000;
-  double collapse_time = 1e-9;
-};
-
-// Inelastic collapse of the hard-sphere model: collisions accumulate in a vanishing time.
-class InelasticCollapseError : public UnphysicalStateError {
- public:
-  InelasticCollapseError(double t, int first_particle, int last_particle, std::uint64_t collisions,
-                         const std::string& what)
-      : UnphysicalStateError(t, first_particle, last_particle, what), collisions_(collisions) {}
-  // Collisions (floor and wall hits included) since the engine started, the collapse included.
-  std::uint64_t collisions() const { return collisions_; }
-
- private:
-  std::uint64_t collisions_;
-};
 
 class HardSphereEngine final : public Engine {
  public:

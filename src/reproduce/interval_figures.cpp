@@ -245,14 +245,23 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
           int lo = kN, hi = -1;  // 0-based particles: pair i (1-based) joins particles i - 1 and i
           for (std::size_t c = ev.first; c <= last_index; ++c) lo = std::min(lo, recs[c].i - 1), hi = std::max(hi, recs[c].i);
           const ChainState& cs = at->state;
+          // The state holds absolute heights and velocities: a difference is read only where it
+          // is at least 1e6 of their round-off (an event's speeds against the largest speed, its
+          // gaps, of order u_a tau_c, against the largest height).
+          double v_max = 0, z_max = 0;
+          for (double v : cs.v) v_max = std::max(v_max, std::abs(v));
+          for (double z : cs.z) z_max = std::max(z_max, std::abs(z));
+          const double eps = std::numeric_limits<double>::epsilon();
+          const bool speeds_resolved = first.speed_in * 0.01 >= 1e6 * eps * v_max;
+          const bool gaps_resolved = first.speed_in * tau_c >= 1e6 * eps * z_max;
           double v_mean = 0;
           for (int j = lo; j <= hi; ++j) v_mean += cs.v[static_cast<std::size_t>(j)];
           v_mean /= hi - lo + 1;
           double e_int = 0;
           for (int j = lo; j <= hi; ++j) e_int += 0.5 * spec.params.m * std::pow(cs.v[static_cast<std::size_t>(j)] - v_mean, 2);
-          internal_energy.push_back(e_int / (0.25 * spec.params.m * first.speed_in * first.speed_in));
+          if (speeds_resolved) internal_energy.push_back(e_int / (0.25 * spec.params.m * first.speed_in * first.speed_in));
           const double gaps = cs.z[static_cast<std::size_t>(hi)] - cs.z[static_cast<std::size_t>(lo)] - (hi - lo) * spec.params.d;
-          spread.push_back(gaps / (first.speed_in * tau_c));
+          if (gaps_resolved) spread.push_back(gaps / (first.speed_in * tau_c));
         }
         duration.push_back((end - first.t_begin) / tau_c);
         if (previous_end >= 0) {
@@ -321,7 +330,8 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
                     "the median ratio u_r / u_a of the speed its last collision leaves to u_a; the cluster it leaves, read from the chain "
                     "when its last contact has ended (events during which another contact stays open elsewhere are left out): the "
                     "median kinetic energy of its particles about their centre of mass over the approach energy m u_a² / 4, and the "
-                    "median sum of its gaps over u_a τ_c; its median duration and the median wait since the previous event (τ_c); "
+                    "median sum of its gaps over u_a τ_c (each over the events where the chain's absolute velocities, or heights, "
+                    "resolve 1 % of u_a, or u_a τ_c, to 1e6 times their round-off); its median duration and the median wait since the previous event (τ_c); "
                     "and the events per launch in each decade of u_a (column 1e-m: 1e-m ≤ u_a < 1e-(m-1)):\n\n| k | u_r / u_a | "
                     "internal energy / (m u_a² / 4) | gaps / (u_a τ_c) | duration | wait |");
   for (int c = 0; c < kSpeedColumns; ++c) md += fmt::format(" 1e{} |", -c - 1);  // the decade [1e-(c+1), 1e-c)

@@ -14,7 +14,6 @@
 #include <utility>
 
 #include "analysis/blocking.hpp"
-#include "engines/hard_sphere_engine.hpp"
 #include "model/floor.hpp"
 #include "model/random.hpp"
 
