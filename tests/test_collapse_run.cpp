@@ -13,6 +13,16 @@ using namespace granchain;
 
 namespace {
 
+// Free-space launches of N particles (Sec. III.D), no gravity.
+CollapseSpec free_space(int N, double e, double k) {
+  CollapseSpec s;
+  s.params.N = N;
+  s.params.e = e;
+  s.params.k = k;
+  s.params.g = 0.0;
+  return s;
+}
+
 CollapseSpec three_body(double e, double k, int R) {
   CollapseSpec s;
   s.params.N = 3;
@@ -131,11 +141,7 @@ TEST(CollapseRun, HardSpheresCollapseUnlessTheTcModelIsOn) {
 // contact beginning below resolution, and momentum, which every contact conserves exactly in the
 // model, is conserved to round-off in each.
 TEST(CollapseRun, RestingPairsStayResolvedAndEveryLaunchEnds) {
-  CollapseSpec spec;
-  spec.params.N = 25;
-  spec.params.e = 0.3;
-  spec.params.k = 1e8;
-  spec.params.g = 0.0;
+  const CollapseSpec spec = free_space(25, 0.3, 1e8);
   std::uint64_t held = 0, grazing = 0;
   for (int launch = 0; launch < 200; ++launch) {
     const ChainState initial = collapse_initial_state(spec, launch);
@@ -191,11 +197,7 @@ TEST(CollapseRun, OneBodyMeansEveryRelativeVelocityBelowResolution) {
 // round-off of the heights) and the launch's momentum (free space conserves it); each launch's
 // states follow its records. N = 10, e = 0.3, k = 1e8, 6 launches on two threads.
 TEST(CollapseRun, ClosedStatesFollowTheirRecordsWithEveryContactOpenAndMomentumKept) {
-  CollapseSpec s;
-  s.params.N = 10;
-  s.params.e = 0.3;
-  s.params.k = 1e8;
-  s.params.g = 0.0;
+  CollapseSpec s = free_space(10, 0.3, 1e8);
   s.realizations = 6;
   s.threads = 2;
   std::vector<CollisionRecord> recs;
