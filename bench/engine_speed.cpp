@@ -19,6 +19,7 @@
 
 #include "bench_cli.hpp"
 #include "engines/engine_registry.hpp"
+#include "engines/exact/exact_engine.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
@@ -64,21 +65,19 @@ Timing time_run(const Workload& w, EngineKind engine, double T, std::uint64_t se
 // collision event, and its counters (the same in every repeat: the run is deterministic).
 struct EngineOnly {
   double ns = 0, search_steps = 0;
-  EngineCounters counters;
+  ExactCounters counters;
   double collisions = 0;
   double wall_time() const { return ns; }
 };
 EngineOnly engine_only_per_collision(const Workload& w, std::uint64_t seed) {
   const ChainParameters p{.N = 25, .k = w.k, .e = w.e};
   ThermalFloor floor(p.kT0, p.m, seed);
-  EngineChoice exact;
-  exact.kind = EngineKind::Exact;
-  auto engine = make_engine(exact, p, driven_column_initial_state(p, seed), &floor);
+  ExactEngine engine(p, driven_column_initial_state(p, seed), &floor);
   NullEventSink none;
   const auto t0 = std::chrono::steady_clock::now();
-  engine->advance_to(1.1 * w.T, none);
+  engine.advance_to(1.1 * w.T, none);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const EngineCounters c = engine->counters();
+  const ExactCounters c = engine.work();
   const double collisions = static_cast<double>(c.contact_ends + c.floor_hits);
   return {1e9 * wall / collisions, static_cast<double>(c.search_steps) / collisions, c, collisions};
 }
@@ -94,23 +93,22 @@ struct LargeColumn {
 struct LargeTiming {
   double exact_s = 0, ref_s = 0;  // wall seconds over the window (reference: scaled)
   double events = 0, collisions = 0;
-  EngineCounters window;          // exact engine's counters over the window
+  ExactCounters window;           // exact engine's counters over the window
 };
 LargeTiming time_large_column(const LargeColumn& w, int N, double e, double settle, double window,
                               std::uint64_t seed) {
   const ChainParameters p{.N = N, .k = w.k, .e = e};
   ThermalFloor floor(p.kT0, p.m, seed);
-  EngineChoice exact;
-  auto engine = make_engine(exact, p, driven_column_initial_state(p, seed), &floor);
+  ExactEngine engine(p, driven_column_initial_state(p, seed), &floor);
   NullEventSink none;
-  engine->advance_to(settle, none);
-  const ChainState settled = engine->state();
-  const EngineCounters before = engine->counters();
+  engine.advance_to(settle, none);
+  const ChainState settled = engine.state();
+  const ExactCounters before = engine.work();
   LargeTiming out;
   auto t0 = std::chrono::steady_clock::now();
-  engine->advance_to(settle + window, none);
+  engine.advance_to(settle + window, none);
   out.exact_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const EngineCounters after = engine->counters();
+  const ExactCounters after = engine.work();
   out.events = static_cast<double>(after.steps - before.steps);
   out.collisions = static_cast<double>(after.contact_ends + after.floor_hits - before.contact_ends - before.floor_hits);
   out.window = after;
@@ -200,7 +198,7 @@ int main(int argc, char** argv) {
   fmt::print("{:>6} {:>5} | {:>11} {:>9} | {:>15} {:>10} | {:>15} {:>10}\n", "k", "e", "closed form", "bound",
              "cluster search", "steps each", "gap/floor search", "steps each");
   for (std::size_t i = 0; i < workloads.size(); ++i) {
-    const EngineCounters& c = work[i].counters;
+    const ExactCounters& c = work[i].counters;
     const double per = 1.0 / work[i].collisions;
     const double edge_steps = static_cast<double>(c.search_steps - c.cluster_search_steps);
     auto ratio = [](double a, std::uint64_t b) { return b > 0 ? fmt::format("{:.2f}", a / static_cast<double>(b)) : "-"; };

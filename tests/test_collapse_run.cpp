@@ -147,8 +147,8 @@ TEST(CollapseRun, RestingPairsStayResolvedAndEveryLaunchEnds) {
     const ChainState initial = collapse_initial_state(spec, launch);
     auto engine = make_engine(spec.engine, spec.params, initial, nullptr);
     ASSERT_TRUE(run_launch_to_end(*engine, spec, false)) << "launch " << launch << ": no end before t_max";
-    held += engine->counters().held_contacts;
-    grazing += engine->counters().grazing_contacts;
+    held += engine->below_resolution().held_contacts;
+    grazing += engine->below_resolution().grazing_contacts;
     EXPECT_LT(momentum_drift(initial, engine->state()), 1e-12) << "launch " << launch;
   }
   EXPECT_EQ(grazing, 0u);

@@ -346,17 +346,15 @@ TEST(ExactEngine, IsDeterministic) {
 TEST(ExactEngine, AuditLeavesTheTrajectoryUnchanged) {
   for (int N : {25, 40}) {
     const ChainParameters p{.N = N, .k = 1e6, .e = 0.2};
-    auto final_state = [&](bool audit, EngineCounters& c) {
+    auto final_state = [&](bool audit, ExactCounters& c) {
       ThermalFloor floor(p.kT0, p.m, 7);
-      EngineChoice choice;
-      choice.audit = audit;
-      auto engine = make_engine(choice, p, driven_column_initial_state(p, 7), &floor);
+      ExactEngine engine(p, driven_column_initial_state(p, 7), &floor, ExactOptions{.audit = audit});
       NullEventSink none;
-      engine->advance_to(20.0, none);
-      c = engine->counters();
-      return engine->state();
+      engine.advance_to(20.0, none);
+      c = engine.work();
+      return engine.state();
     };
-    EngineCounters plain, audited;
+    ExactCounters plain, audited;
     const ChainState a = final_state(false, plain), b = final_state(true, audited);
     EXPECT_EQ(a.z, b.z) << "N=" << N;
     EXPECT_EQ(a.v, b.v) << "N=" << N;
@@ -380,12 +378,10 @@ TEST(LongExactEngine, AuditFindsNoValueOfTheWrongSignOverTenMillionEvents) {
                         Case{40, 0.3, 1e8, 200}, Case{150, 0.1, 1e6, 50}, Case{150, 0.1, 1e8, 50}}) {
     const ChainParameters p{.N = c.N, .k = c.k, .e = c.e};
     ThermalFloor floor(p.kT0, p.m, 3);
-    EngineChoice choice;
-    choice.audit = true;
-    auto engine = make_engine(choice, p, driven_column_initial_state(p, 3), &floor);
+    ExactEngine engine(p, driven_column_initial_state(p, 3), &floor, ExactOptions{.audit = true});
     NullEventSink none;
-    engine->advance_to(c.T, none);
-    const EngineCounters k = engine->counters();
+    engine.advance_to(c.T, none);
+    const ExactCounters k = engine.work();
     std::printf("N = %3d  e = %4.2f  k = %6.0e  T = %5.0f: %9llu events, %9llu instants, %11llu values, %llu of the wrong sign\n",
                 c.N, c.e, c.k, c.T, static_cast<unsigned long long>(k.steps),
                 static_cast<unsigned long long>(k.audit_instants), static_cast<unsigned long long>(k.audit_values),

@@ -278,8 +278,8 @@ OracleTally check_against_oracle(const ChainParameters& p, std::uint64_t seed, s
     // held) makes the state ambiguous to the oracle: the cluster is not checked.
     const std::vector<double> x = engine.overlaps();
     const ChainState& s = engine.state();
-    const bool grazing = engine.counters().grazing_contacts != grazing_before;
-    grazing_before = engine.counters().grazing_contacts;
+    const bool grazing = engine.below_resolution().grazing_contacts != grazing_before;
+    grazing_before = engine.below_resolution().grazing_contacts;
     std::vector<int> lo_of(p.N), hi_of(p.N);  // each particle's cluster, bottom and top
     for (int lo = 0; lo < p.N;) {
       int hi = lo;

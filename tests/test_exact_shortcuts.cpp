@@ -26,7 +26,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 struct Outcome {
   std::vector<Event> events;
   ChainState state;
-  EngineCounters counters;
+  ExactCounters counters;
   std::uint64_t shortcut_events = 0;
 };
 
@@ -36,7 +36,7 @@ Outcome run(const ChainParameters& p, const ChainState& s, bool driven, std::uin
   ExactEngine engine(p, s, driven ? &floor : nullptr, ExactOptions{.pair_shortcuts = shortcuts});
   EventRecorder rec;
   engine.advance_to(t_end, rec);
-  return {rec.events, engine.state(), engine.counters(), engine.shortcut_events()};
+  return {rec.events, engine.state(), engine.work(), engine.shortcut_events()};
 }
 
 void expect_identical(const Outcome& a, const Outcome& b, const std::string& what) {

@@ -11,31 +11,26 @@
 
 namespace granchain {
 
+// What every engine counts.
 struct EngineCounters {
   std::uint64_t steps = 0;         // integration steps (time-stepped engines) or event updates
   std::uint64_t contact_ends = 0;  // all contact ends since the start, transient included
   std::uint64_t floor_hits = 0;    // all floor hits since the start, transient included
-  std::uint64_t search_steps = 0;  // event-driven engines: root-free steps of the event searches
-  // Exact engine, where the prediction work goes: event predictions solved in closed form (a pair's
-  // contact end, two free particles, a free particle over the floor), those a lower bound ruled
-  // out with no step (a gap or floor height next to a cluster, first_root), and those searched
-  // step by step: a cluster's contact ends (their steps counted apart) or a gap or floor height.
-  std::uint64_t closed_form_predictions = 0;
-  std::uint64_t bound_exclusions = 0;
-  std::uint64_t cluster_searches = 0;
-  std::uint64_t cluster_search_steps = 0;
-  std::uint64_t edge_searches = 0;
-  // Exact engine, events below its resolution: contacts that began with an approach speed below
-  // 1e-13 of the particles' speeds, and steps of 1e-6 tau_c taken over a function touching zero
-  // within round-off (both occur only where relative motion has decayed below round-off).
-  std::uint64_t grazing_contacts = 0;
-  std::uint64_t resolution_skips = 0;
-  // Exact engine: grazing contacts held in contact longer because their pair keeps grazing.
-  std::uint64_t held_contacts = 0;
-  // Exact engine with its audit on (EngineChoice::audit): instants checked between events, the
-  // watched values evaluated there, and those found with the wrong sign beyond round-off (an
-  // overlap of a closed pair at or below zero or at d, a gap or the floor height below zero).
-  std::uint64_t audit_instants = 0, audit_values = 0, audit_violations = 0;
+};
+
+// Contacts below an engine's resolution: contacts that began with an approach speed below 1e-13
+// of the particles' speeds, those of them held in contact longer because their pair kept grazing,
+// and steps of 1e-6 tau_c taken over a function touching zero within round-off (all occur only
+// where relative motion has decayed below round-off). Zero for an engine that reports none.
+struct ResolutionCounters {
+  std::uint64_t grazing_contacts = 0, held_contacts = 0, resolution_skips = 0;
+};
+
+// An engine's audit of its own state between events (EngineChoice::audit, for the engines whose
+// registry entry has one): instants checked, watched values evaluated there, and those found with
+// the wrong sign beyond round-off. Zero when there is none or it is off.
+struct AuditCounters {
+  std::uint64_t instants = 0, values = 0, violations = 0;
 };
 
 class Engine {
@@ -48,6 +43,8 @@ class Engine {
   virtual const ChainState& state() const = 0;
   virtual double time() const = 0;
   virtual EngineCounters counters() const = 0;
+  virtual ResolutionCounters below_resolution() const { return {}; }
+  virtual AuditCounters audit() const { return {}; }
   // Smallest natural time increment (the step of a time-stepped engine), 0 if none.
   virtual double time_quantum() const { return 0.0; }
 };

@@ -131,8 +131,8 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
       if (!done && !hard && moves_as_one_body(spec, engine->state())) done = obs.outcome.one_body = true;
     }
     obs.outcome.t_stop = engine->time();
-    obs.outcome.grazing_contacts = engine->counters().grazing_contacts;
-    obs.outcome.held_contacts = engine->counters().held_contacts;
+    obs.outcome.grazing_contacts = engine->below_resolution().grazing_contacts;
+    obs.outcome.held_contacts = engine->below_resolution().held_contacts;
   } catch (const InelasticCollapseError& c) {
     obs.outcome.collapsed = true;
     obs.outcome.t_stop = c.time();

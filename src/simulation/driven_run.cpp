@@ -100,14 +100,15 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   // The audit evaluated every overlap, gap and the floor height at random instants between
   // events: a value of the wrong sign means an event was missed, and the run is not a result.
-  if (c.audit_violations > 0) {
+  const AuditCounters audit = engine->audit();
+  if (audit.violations > 0) {
     throw UnphysicalStateError(t1, 0, 0,
                                fmt::format("the audit found {} of {} overlaps, gaps or floor heights of the wrong sign "
                                            "between events (an event was missed)",
-                                           c.audit_violations, c.audit_values));
+                                           audit.violations, audit.values));
   }
-  r.audit_instants = c.audit_instants;
-  r.audit_values = c.audit_values;
+  r.audit_instants = audit.instants;
+  r.audit_values = audit.values;
   return r;
 }
 

@@ -41,6 +41,24 @@ struct ExactOptions {
   bool pair_shortcuts = true;
 };
 
+// The exact engine's own counts: the generic ones, where its prediction work goes, and what
+// below_resolution() and audit() report.
+struct ExactCounters {
+  std::uint64_t steps = 0, contact_ends = 0, floor_hits = 0;  // as EngineCounters
+  std::uint64_t search_steps = 0;  // root-free steps of the event searches
+  // Event predictions solved in closed form (a pair's contact end, two free particles, a free
+  // particle over the floor), those a lower bound ruled out with no step (a gap or floor height
+  // next to a cluster, first_root), and those searched step by step: a cluster's contact ends
+  // (their steps counted apart) or a gap or floor height.
+  std::uint64_t closed_form_predictions = 0;
+  std::uint64_t bound_exclusions = 0;
+  std::uint64_t cluster_searches = 0;
+  std::uint64_t cluster_search_steps = 0;
+  std::uint64_t edge_searches = 0;
+  std::uint64_t grazing_contacts = 0, resolution_skips = 0, held_contacts = 0;  // ResolutionCounters
+  std::uint64_t audit_instants = 0, audit_values = 0, audit_violations = 0;    // AuditCounters
+};
+
 class ExactEngine final : public Engine {
  public:
   // floor == nullptr: no floor (free space). The chain feels gravity p.g (set 0 for free space).
@@ -49,7 +67,13 @@ class ExactEngine final : public Engine {
   void advance_to(double t, EventSink& sink) override;
   const ChainState& state() const override;
   double time() const override { return now_.value(); }
-  EngineCounters counters() const override { return counters_; }
+  EngineCounters counters() const override { return {counters_.steps, counters_.contact_ends, counters_.floor_hits}; }
+  ResolutionCounters below_resolution() const override {
+    return {counters_.grazing_contacts, counters_.held_contacts, counters_.resolution_skips};
+  }
+  AuditCounters audit() const override { return {counters_.audit_instants, counters_.audit_values, counters_.audit_violations}; }
+  // All its counts, for its tests and benchmarks.
+  const ExactCounters& work() const { return counters_; }
 
   // Kinetic + elastic (k x^2 / 2 per closed contact) + gravitational energy at time(), per unit
   // mass, with z measured from the floor level of the centres (d/2). For conservation tests.
@@ -245,7 +269,7 @@ class ExactEngine final : public Engine {
   ChainSchedule<Time, SlotDetail> schedule_;
 
   Time now_ = 0;
-  mutable EngineCounters counters_;
+  mutable ExactCounters counters_;
 
   mutable ChainState state_;
   mutable bool state_valid_ = false;
