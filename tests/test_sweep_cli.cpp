@@ -328,6 +328,26 @@ TEST_F(SweepCli, StoredOnlyDrawsFromWhatIsStoredAndRunsNothing) {
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
 }
 
+// limit-free under --stored-only draws each series from the counts stored so far: with three of
+// the four counts of one smoke series stored (by `collapse`, the same launches), it draws that
+// series, names what each series lacks, leaves the store as it was, and with none exits 2.
+TEST_F(SweepCli, StoredOnlyLimitFreeDrawsTheSeriesStoredSoFar) {
+  ASSERT_EQ(run("collapse --N 10 --e 0.3 --k 1e4:1e6:x10 --realizations 10 --threads 2 --db s.db -q").exit_code, 0);
+  const auto stored = query(dir_ / "s.db", "SELECT count(*) FROM collapse_runs");
+  const CliResult part = run("reproduce --figure limit-free --preset smoke --db s.db --out figs --stored-only");
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  const std::string report = slurp(dir_ / "figs/report-limit-free.md");
+  EXPECT_NE(report.find("limit-free (N = 10, e = 0.3): 3 of 4 counts"), std::string::npos) << report;
+  EXPECT_NE(report.find("limit-free (N = 25, e = 0.5): 0 of 4 counts"), std::string::npos) << report;
+  EXPECT_NE(report.find("Fewer than two of its counts are stored (--stored-only): not drawn."), std::string::npos);
+  EXPECT_NE(report.find("| 1e6 | "), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "figs/limit-free.png"));
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM collapse_runs"), stored);
+  ASSERT_EQ(run("run --N 5 --e 0.9 --k 1e4 --T 1 --db t.db -q").exit_code, 0);  // a store without counts
+  const CliResult none = run("reproduce --figure limit-free --preset smoke --db t.db --out figs2 --stored-only");
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+}
+
 // --k-min re-reads the same runs over another window of k: the report names it and runs nothing
 // more; a window leaving fewer than three k of the preset's grid is refused (exit 2, nothing written).
 TEST_F(SweepCli, KMinReReadsTheStoredRunsOverAnotherWindow) {
