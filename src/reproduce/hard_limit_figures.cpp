@@ -254,6 +254,9 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
   // whether the verdict is the asymptotic one or the drift of the lower decades.
   const double k_upper = 1e10;
   int drawn = 0;
+  // --stored-only: one read-only handle for every count.
+  std::optional<ResultsStore> reader =
+      o.stored_only ? std::optional<ResultsStore>(std::in_place, o.db, ResultsStore::Access::ReadOnly) : std::nullopt;
   for (const CountSeries& s : free_series(o)) {
     std::vector<CollapseResult> results;
     const std::vector<double> ks = parse_value_list(s.k, "--k");
@@ -261,7 +264,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
       const CollapseSpec spec = free_space_spec(s.N, s.e, k, s.launches, o);
       if (!o.stored_only) {
         results.push_back(stored_or_run_collapse(spec, o, "limit-free"));
-      } else if (std::optional<CollapseResult> r = ResultsStore(o.db, ResultsStore::Access::ReadOnly).find_collapse(spec)) {
+      } else if (std::optional<CollapseResult> r = reader->find_collapse(spec)) {
         results.push_back(*r);
       }
     }
