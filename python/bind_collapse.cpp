@@ -1,19 +1,16 @@
 // granchain.collapse: one collapse count (simulation/collapse_run.hpp) at one (e, k), validated
-// with the messages of `granchain collapse` (cli/collapse_command.cpp), per-launch numpy arrays;
+// by the command's own resolve_collapse_options (config/collapse_options.hpp), per-launch numpy arrays;
 // granchain.k_slope: the slope of n_tot against log10 k between two counts of the same launches.
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 
-#include <charconv>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <vector>
 
 #include "bindings.hpp"
 #include "config/input_error.hpp"
-#include "config/value_list.hpp"
-#include "config/run_options.hpp"
+#include "config/collapse_options.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "theory/collapse_theory.hpp"
@@ -22,90 +19,33 @@ namespace granchain::python {
 
 namespace {
 
-// A number from a keyword argument, read as the CLI reads flag text.
-double real_arg(const std::string& name, const py::object& v) {
-  const std::string t = flag_text(v);
-  double x = 0;
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}' is out of range of a double", name, t));
-  if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}' is not a number", name, t));
-  return x;
-}
-
-std::string text_arg(const std::string& name, const py::object& v) {
-  if (!PyUnicode_Check(v.ptr())) throw InputError(fmt::format("--{} = {} is not a name", name, std::string(py::repr(v))));
-  return v.cast<std::string>();
-}
-
 struct CollapseRequest {
   CollapseSpec spec;
   std::string db;  // "" : not stored
   bool record = false;
 };
 
-// The checks and messages of execute_collapse, for one e and one k.
+// One e and one k, read and checked by the command's own resolve_collapse_options.
 CollapseRequest collapse_request(const py::kwargs& kwargs) {
   auto args = flag_arguments(kwargs);
   CollapseRequest q;
-  CollapseSpec& s = q.spec;
-  auto real = [&](const char* name, double dflt) { auto v = take(args, name); return v ? real_arg(name, *v) : dflt; };
-  // Integers as the CLI reads them (config/value_list.hpp): decimal, whole, in range, the same message.
-  auto integer = [&](const char* name, long long dflt, long long lo, long long hi) {
-    auto v = take(args, name);
-    return v ? parse_integer_in(flag_text(*v), std::string("--") + name, lo, hi) : dflt;
-  };
-  auto text = [&](const char* name, const char* dflt) { auto v = take(args, name); return v ? text_arg(name, *v) : std::string(dflt); };
-
-  const long long N = integer("N", 3, 2, 100000);
-  const double e = real("e", 0.03);
-  if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
-  const std::string engine_text = text("engine", engines().front().name);
-  const EngineInfo* engine = find_engine(engine_text);
-  if (engine == nullptr) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: {}", engine_text, engine_name_list()));
-  const bool hard = engine->hard_spheres;
-  const auto k_arg = take(args, "k");
-  double k = std::numeric_limits<double>::infinity();
-  if (hard) {
-    if (k_arg) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
-  } else {
-    if (!k_arg) throw InputError("--k: give the elastic constant (one value per call); valid range: k > 0");
-    k = real_arg("k", *k_arg);
-    if (!(k > 0 && std::isfinite(k))) throw InputError(fmt::format("--k: {} is out of range; valid range: k > 0", k));
-  }
-  const auto tc_arg = take(args, "tc");
-  if (!hard && tc_arg) throw InputError("--tc: the TC model belongs to --engine hard");
-  const std::string setup = text("setup", "free");
-  if (setup != "free" && setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", setup));
-  s.setup = setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
-  const std::string stop = text("stop", s.setup == CollapseSetup::FreeSpace ? "ends" : "strict");
-  if (stop != "ends" && stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", stop));
-  s.rule = stop == "ends" ? StopRule::Ends : StopRule::Strict;
-  if (s.rule == StopRule::Ends && s.setup == CollapseSetup::Wall)
-    throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
-  const double a = real("a", 1.0), v0 = real("v0", 1.0), dv0 = real("dv0", 0.1);
-  if (!(a >= 0 && std::isfinite(a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", a));
-  if (!(v0 > 0 && std::isfinite(v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", v0));
-  check_collapse_launch(static_cast<int>(N), a, v0, ChainParameters{}.d);
-  if (!hard) check_collapse_contact_time(k, e, ChainParameters{}.m, ChainParameters{}.d, static_cast<int>(N), a, v0, engine->fine_clock);
-  if (!(dv0 >= 0 && std::isfinite(dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", dv0));
-  const long long realizations = integer("realizations", 1000, 2, 10000000);
-  const long long seed = integer("seed", 1, 0, 9223372036854775807LL);
-  const long long threads = integer("threads", std::max(1u, std::thread::hardware_concurrency()), 1, 1024);
-  const double dt_factor = real("dt-factor", 100.0);
-  if (!(dt_factor >= 10 && dt_factor <= 1e6))
-    throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", dt_factor));
-  const double tc = tc_arg ? real_arg("tc", *tc_arg) : 0.0;
-  if (!(tc >= 0 && std::isfinite(tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", tc));
-  const bool watch_given = args.count("collapse-collisions") > 0 || args.count("collapse-time") > 0;
-  const long long cc = integer("collapse-collisions", 1000, 2, 10000000);
-  const double ct = real("collapse-time", 1e-9);
-  if (!(ct > 0 && std::isfinite(ct))) throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", ct));
-  check_collapse_tc(tc, ct);
-  if (!hard && watch_given)
-    throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
-  if (auto db = take(args, "db")) {
+  const std::optional<py::object> db = take(args, "db");
+  const std::optional<py::object> record = take(args, "record-collisions");
+  std::map<std::string, RawValue> raw;
+  for (const auto& [name, value] : args) raw[name] = keyword_value(value);
+  // The command's default k is a list; a call counts one k, which a soft engine needs given.
+  const EngineInfo* engine = raw.count("engine") ? find_engine(raw.at("engine").text()) : &engines().front();
+  if (engine != nullptr && !engine->hard_spheres && !raw.count("k"))
+    throw InputError("--k: give the elastic constant (one value per call); valid range: k > 0");
+  const CollapseOptions opts = resolve_collapse_options(raw);
+  for (const auto& [name, values] : {std::pair<const char*, const std::vector<double>*>{"e", &opts.es}, {"k", &opts.ks}})
+    if (values->size() != 1)
+      throw InputError(fmt::format("--{} = '{}' holds {} values; granchain.collapse counts one (e, k) per call", name,
+                                   raw.at(name).text(), values->size()));
+  q.spec = opts.base;
+  q.spec.params.e = opts.es.front();
+  q.spec.params.k = opts.ks.front();
+  if (db) {
     q.db = path_text(*db, "--db");
     try {
       ResultsStore::preflight(q.db);
@@ -113,28 +53,11 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
       throw py::value_error(err.what());
     }
   }
-  if (auto rec = take(args, "record-collisions")) {
-    if (!rec->is_none() && !PyBool_Check(rec->ptr()))
-      throw InputError(fmt::format("record_collisions = {} is not True or False", std::string(py::repr(*rec))));
-    q.record = !rec->is_none() && rec->cast<bool>();
+  if (record) {
+    if (!PyBool_Check(record->ptr()))
+      throw InputError(fmt::format("record_collisions = {} is not True or False", std::string(py::repr(*record))));
+    q.record = record->cast<bool>();
   }
-  if (!args.empty()) {
-    throw InputError(fmt::format("unknown parameter '{}'; known: N, e, k, engine, setup, a, v0, dv0, stop, realizations, seed, "
-                                 "threads, dt_factor, tc, collapse_collisions, collapse_time, db, record_collisions",
-                                 args.begin()->first));
-  }
-
-  s.params.N = static_cast<int>(N);
-  s.params.e = e;
-  s.params.k = k;
-  s.params.g = 0.0;
-  s.engine.kind = engine->kind;
-  s.engine.dt_factor = dt_factor;
-  s.engine.hard = {tc, static_cast<std::uint64_t>(cc), ct};
-  s.launch = {a, v0, dv0};
-  s.realizations = static_cast<int>(realizations);
-  s.seed = static_cast<std::uint64_t>(seed);
-  s.threads = static_cast<int>(threads);
   return q;
 }
 

@@ -148,7 +148,7 @@ py::dict run(const py::kwargs& kwargs) {
   const std::optional<py::object> db = take(args, "db");
 
   std::map<std::string, RawValue> raw;
-  for (const auto& [name, value] : args) raw[name] = RawValue{flag_text(value), ""};
+  for (const auto& [name, value] : args) raw[name] = keyword_value(value);
   if (db) raw["db"] = RawValue{path_text(*db, "--db"), ""};
   RunOptions opts = resolve_run_options(raw);  // InputError -> ValueError, the CLI's message
   opts.use_db = db.has_value();
@@ -226,15 +226,22 @@ void bind_run(py::module_& m) {
         "raises ValueError with the CLI's message.");
   m.def("run_parameters", [] {
     py::list out;
-    for (const ParameterInfo& p : run_parameters()) {
+    for (const Parameter& p : run_parameters()) {
+      if (!(p.uses & kUsePython)) continue;
       py::dict d;
       d["name"] = p.name;
-      d["help"] = p.help;
-      d["type"] = p.type;
+      d["help"] = p.help();
+      d["type"] = p.type_name();
+      d["unit"] = p.unit;
+      d["range"] = p.range;
+      d["default"] = p.fallback;
+      d["sweep_axis"] = p.sweep_axis;
+      d["store_column"] = p.store_column;
       out.append(d);
     }
     return out;
-  }, "The parameters of run(): name (the CLI flag without --), help text with the valid range and default, type.");
+  }, "The parameters of run(): name (the CLI flag without --), help text, type, unit (in m, d, g), valid range, "
+     "default, whether a sweep takes a list of it, and the store column that keeps it.");
 }
 
 }  // namespace granchain::python

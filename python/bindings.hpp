@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "config/parameter.hpp"
+
 namespace granchain::python {
 
 namespace py = pybind11;
@@ -15,6 +17,12 @@ namespace py = pybind11;
 // decimal, a float in Python's shortest round-trip form (so "1e6" and 1e6 parse to the same
 // double), anything else as str(value) (which validation then refuses with the CLI's message).
 std::string flag_text(const py::handle& value);
+
+// A keyword argument as a typed value (config/parameter.hpp): a Python int (or anything with
+// __index__) as an integer, a float (or anything with __float__) as a real number, a str as
+// text; True and False, and integers beyond 64 bits, as their text, which every numeric parameter
+// refuses with the CLI's message.
+RawValue keyword_value(const py::handle& value);
 
 // Keyword arguments by flag name: '_' reads as '-' (dt_factor -> dt-factor); None means "not
 // given" and is dropped.

@@ -18,6 +18,26 @@ std::string flag_text(const py::handle& value) {
   return py::str(value);
 }
 
+RawValue keyword_value(const py::handle& value) {
+  PyObject* v = value.ptr();
+  if (PyUnicode_Check(v)) return RawValue{value.cast<std::string>()};
+  if (PyBool_Check(v)) return RawValue{std::string(py::str(value))};
+  if (PyIndex_Check(v)) {
+    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(v));
+    int overflow = 0;
+    const long long x = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+    if (overflow == 0 && !(x == -1 && PyErr_Occurred())) return RawValue{x};
+    PyErr_Clear();
+    return RawValue{std::string(py::str(i))};
+  }
+  if (PyFloat_Check(v) || PyObject_HasAttrString(v, "__float__")) {
+    const double x = PyFloat_AsDouble(v);
+    if (!(x == -1.0 && PyErr_Occurred())) return RawValue{x};
+    PyErr_Clear();
+  }
+  return RawValue{std::string(py::str(value))};
+}
+
 std::map<std::string, py::object> flag_arguments(const py::kwargs& kwargs) {
   std::map<std::string, py::object> out;
   for (const auto& [key, value] : kwargs) {

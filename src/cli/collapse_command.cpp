@@ -17,7 +17,7 @@
 #include "provenance.hpp"
 #include "cli/interrupt_message.hpp"
 #include "store/output_file.hpp"
-#include "config/run_options.hpp"
+#include "config/collapse_options.hpp"
 #include "config/value_list.hpp"
 #include "engines/engine.hpp"
 #include "simulation/collapse_run.hpp"
@@ -30,31 +30,11 @@ namespace granchain {
 namespace {
 
 struct CollapseFlags {
-  int N = 3;
-  std::string e = "0.03";
-  std::string k = "1e4:1e10:x10";
-  std::string engine = "exact";
-  std::string setup = "free";
-  double a = 1.0, v0 = 1.0, dv0 = 0.1;
-  std::string stop;
-  long long realizations = 1000;
-  long long seed = 1;
-  bool progress_lines = false;
-  int threads = 0;
-  double dt_factor = 100.0;
-  double tc = 0.0;
-  long long collapse_collisions = 1000;
-  double collapse_time = 1e-9;
+  std::map<std::string, std::string> values;  // parameter name -> text from the command line
+  std::map<std::string, CLI::Option*> options;
   std::string events_path, json_path, db_path = "granchain.db";
-  // The integer flags as given, parsed by the shared integer parser (decimal, whole, in range).
-  std::string N_text = "3", realizations_text = "1000", seed_text = "1", threads_text, collapse_collisions_text = "1000";
   CLI::Option* json_option = nullptr;
-  CLI::Option* threads_option = nullptr;
-  CLI::Option* k_option = nullptr;
-  CLI::Option* tc_option = nullptr;
-  CLI::Option* cc_option = nullptr;
-  CLI::Option* ct_option = nullptr;
-  bool no_db = false, quiet = false;
+  bool no_db = false, quiet = false, progress_lines = false;
 };
 
 int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_);
@@ -67,30 +47,8 @@ Subcommand add_collapse_command(CLI::App& app) {
   sub_ = app.add_subcommand("collapse", "Count the collisions n_tot of an inelastic collapse in free space (or on a wall), "
                                         "averaged over random launches.");
   auto& o = *impl_;
-  sub_->add_option("--N", o.N_text, "number of particles; integer 2 <= N <= 100000; default 3");
-  sub_->add_option("--e", o.e, "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1); 0 < e <= 1; default 0.03")
-      ->type_name("LIST");
-  o.k_option = sub_->add_option("--k", o.k, "elastic constants: a list or range (1e4:1e12:x10); k > 0; default 1e4:1e10:x10 "
-                                            "(not with --engine hard, whose k is infinite)")
-                   ->type_name("LIST");
-  sub_->add_option("--engine", o.engine, "exact (default), reference, reference-located (dt = tau_c/dt-factor) or hard (k = infinity)");
-  sub_->add_option("--setup", o.setup, "free: free space, Sec. III.D (default); wall: Bernu-Mazighi spheres thrown "
-                                       "against a wall of restitution e, Sec. II.C");
-  sub_->add_option("--a", o.a, "initial space between neighbours (and particle 1 and the wall); a >= 0; default 1");
-  sub_->add_option("--v0", o.v0, "launch speed (inward in free space, toward the wall); v0 > 0; default 1");
-  sub_->add_option("--dv0", o.dv0, "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1); dv0 >= 0; default 0.1");
-  sub_->add_option("--stop", o.stop, "ends (the paper's, free space only; default there) or strict (default on a wall)");
-  sub_->add_option("--realizations", o.realizations_text, "random launches per (e, k); integer 2 <= R <= 10000000 (two for an error bar); default 1000");
-  sub_->add_option("--seed", o.seed_text, "base seed; launch r uses derive_seed(seed, r), the same at every e and k; "
-                                     "integer 0 <= seed <= 9223372036854775807; default 1");
-  o.threads_option = sub_->add_option("--threads", o.threads_text, "threads over realisations; 1 <= threads <= 1024; default all cores "
-                                           "(results do not depend on it)");
-  sub_->add_option("--dt-factor", o.dt_factor, "reference engines: dt = tau_c / dt-factor; 10 <= dt-factor <= 1e6; default 100");
-  o.tc_option = sub_->add_option("--tc", o.tc, "hard engine: TC model time t_c (a collision within t_c of a particle's "
-                                               "previous one is elastic); tc >= 0; default 0 (off)");
-  o.cc_option = sub_->add_option("--collapse-collisions", o.collapse_collisions_text,
-                   "hard engine: collapse when this many consecutive collisions fit in --collapse-time; 2..1e7 (each launch keeps that many collision times); default 1000");
-  o.ct_option = sub_->add_option("--collapse-time", o.collapse_time, "hard engine: see --collapse-collisions; > 0; default 1e-9");
+  for (const Parameter& p : collapse_parameters())
+    o.options[p.name] = sub_->add_option("--" + p.name, o.values[p.name], p.help())->type_name(p.type_name());
   sub_->add_option("--events", o.events_path, "write every collision (e, k, realisation, index, contact begin and end "
                                               "times, pair, speeds in and out) as CSV to FILE")
       ->type_name("FILE");
@@ -134,58 +92,12 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   auto& o = *impl_;
   const bool json_requested = o.json_option->count() > 0;
   const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
-  const EngineInfo* engine = find_engine(o.engine);  // nullptr: refused below
-  const bool hard = engine != nullptr && engine->hard_spheres;
-  std::vector<double> es, ks;
-  CollapseSpec base;
+  CollapseOptions opts;
   try {
-    o.N = static_cast<int>(parse_integer_in(o.N_text, "--N", 2, 100000));
-    o.realizations = parse_integer_in(o.realizations_text, "--realizations", 2, 10000000);
-    o.seed = parse_integer_in(o.seed_text, "--seed", 0, 9223372036854775807LL);
-    o.threads = o.threads_option->count() == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
-                                                           : static_cast<int>(parse_integer_in(o.threads_text, "--threads", 1, 1024));
-    o.collapse_collisions = parse_integer_in(o.collapse_collisions_text, "--collapse-collisions", 2, 10000000);
-    es = parse_value_list(o.e, "--e");
-    for (double e : es)
-      if (!(e > 0 && e <= 1)) throw InputError(fmt::format("--e: {} is out of range; valid range: 0 < e <= 1", e));
-    if (engine == nullptr) throw InputError(fmt::format("--engine = '{}' is not an engine; valid: {}", o.engine, engine_name_list()));
-    if (hard) {
-      if (o.k_option->count() > 0) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
-      ks = {std::numeric_limits<double>::infinity()};
-    } else {
-      ks = parse_value_list(o.k, "--k");
-      for (double k : ks)
-        if (!(k > 0)) throw InputError(fmt::format("--k: {} is out of range; valid range: k > 0", k));
-      if (o.tc_option->count() > 0) throw InputError("--tc: the TC model belongs to --engine hard");
-    }
-    if (o.setup != "free" && o.setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", o.setup));
-    if (!(o.a >= 0 && std::isfinite(o.a))) throw InputError(fmt::format("--a = {} is out of range; valid range: a >= 0", o.a));
-    if (!(o.v0 > 0 && std::isfinite(o.v0))) throw InputError(fmt::format("--v0 = {} is out of range; valid range: v0 > 0", o.v0));
-    const ChainParameters defaults;
-    check_collapse_launch(o.N, o.a, o.v0, defaults.d);
-    if (!hard)
-      for (double e : es)
-        for (double k : ks) check_collapse_contact_time(k, e, defaults.m, defaults.d, o.N, o.a, o.v0, engine->fine_clock);
-    base.setup = o.setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
-    if (o.stop.empty()) o.stop = base.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
-    if (o.stop != "ends" && o.stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", o.stop));
-    base.rule = o.stop == "ends" ? StopRule::Ends : StopRule::Strict;
-    if (base.rule == StopRule::Ends && base.setup == CollapseSetup::Wall)
-      throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
-    if (!(o.dv0 >= 0 && std::isfinite(o.dv0))) throw InputError(fmt::format("--dv0 = {} is out of range; valid range: dv0 >= 0", o.dv0));
-    if (!(o.dt_factor >= 10 && o.dt_factor <= 1e6))
-      throw InputError(fmt::format("--dt-factor = {} is out of range; valid range: 10 <= dt-factor <= 1e6", o.dt_factor));
-    if (!(o.tc >= 0 && std::isfinite(o.tc))) throw InputError(fmt::format("--tc = {} is out of range; valid range: tc >= 0", o.tc));
-    if (!(o.collapse_time > 0 && std::isfinite(o.collapse_time)))
-      throw InputError(fmt::format("--collapse-time = {} is out of range; valid range: > 0", o.collapse_time));
-    check_collapse_tc(o.tc, o.collapse_time);
-    // Every launch's outcome is kept in memory until the table is printed: at most 1e9 launches.
-    if (static_cast<double>(es.size()) * ks.size() * o.realizations > 1e9)
-      throw InputError(fmt::format("--realizations = {}: {} values of e times {} of k times the launches is {:.3g}; valid range: "
-                                   "at most 1e9 launches in one command", o.realizations, es.size(), ks.size(),
-                                   static_cast<double>(es.size()) * ks.size() * o.realizations));
-    if (!hard && (o.cc_option->count() > 0 || o.ct_option->count() > 0))
-      throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
+    std::map<std::string, RawValue> raw;
+    for (const auto& [name, option] : o.options)
+      if (option->count() > 0) raw[name] = RawValue{o.values[name]};
+    opts = resolve_collapse_options(raw);
     check_outputs({{"--db", o.no_db ? "" : o.db_path}, {"--events", o.events_path},
                    {"--json", json_requested && !json_stdout ? o.json_path : ""}}, {});
     if (!o.no_db) ResultsStore::preflight(o.db_path);
@@ -196,17 +108,12 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
-
-  base.params.N = o.N;
-  base.params.g = 0.0;
-  base.engine.kind = engine->kind;
-  base.engine.dt_factor = o.dt_factor;
-  base.engine.hard = {o.tc, static_cast<std::uint64_t>(o.collapse_collisions), o.collapse_time};
-  base.launch = {o.a, o.v0, o.dv0};
-  base.realizations = static_cast<int>(o.realizations);
-  base.seed = static_cast<std::uint64_t>(o.seed);
-  base.threads = o.threads;
-  set_parallelism(o.threads, 1);
+  const CollapseSpec& base = opts.base;
+  const std::vector<double>& es = opts.es;
+  const std::vector<double>& ks = opts.ks;
+  const bool hard = engine_info(base.engine.kind).hard_spheres;
+  const int N = base.params.N;
+  set_parallelism(base.threads, 1);
 
   // The event file is written to a temporary name and renamed only when everything succeeded; a
   // target that is not a regular file (a device, a FIFO) is written directly.
@@ -225,8 +132,9 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   };
 
   if (!o.quiet && !json_stdout) {
-    fmt::print("N = {}, setup {}, engine {}, stop rule {}, {} launches per point, a = {}, v0 = {}, dv0 = {}\n", o.N,
-               setup_name(base.setup), o.engine, rule_name(base.rule), base.realizations, o.a, o.v0, o.dv0);
+    fmt::print("N = {}, setup {}, engine {}, stop rule {}, {} launches per point, a = {}, v0 = {}, dv0 = {}\n", N,
+               setup_name(base.setup), engine_name(base.engine.kind), rule_name(base.rule), base.realizations, base.launch.a,
+               base.launch.v0, base.launch.dv0);
     fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8}\n", "e", "k", "n_tot", "+-", "min", "max", "collapsed",
                "seconds");
     std::fflush(stdout);
@@ -308,7 +216,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   j["points"] = nlohmann::json::array();
   for (const CollapseResult& r : results) j["points"].push_back(collapse_result_to_json(r));
   j["slopes"] = nlohmann::json::array();
-  const bool three_body = o.N == 3 && base.setup == CollapseSetup::FreeSpace;
+  const bool three_body = N == 3 && base.setup == CollapseSetup::FreeSpace;
   if (!slopes.empty() && !o.quiet && !json_stdout) {
     fmt::print("\nslope of n_tot against log10 k (paired over launches){}\n",
                three_body ? "; theory for N = 3: Eq. (ntot-log) -ln10/(2 ln q), all collisions -ln10/ln q" : "");
@@ -342,15 +250,15 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
       }
     }
     const auto real = number_or_null;
-    const double icw = theory::ec_wall_icw(o.N);
-    const double cushion = o.N >= 2 ? theory::ec_wall_cushion(o.N) : std::nan("");
+    const double icw = theory::ec_wall_icw(N);
+    const double cushion = N >= 2 ? theory::ec_wall_cushion(N) : std::nan("");
     j["critical"] = {{"last_collapsing_e", real(last_collapsing)}, {"next_e_without_collapse", real(next_clean)},
                      {"ec_wall_icw", icw}, {"ec_wall_cushion", cushion}};
-    if (base.setup == CollapseSetup::FreeSpace && o.N >= 3) j["critical"]["ec_free"] = theory::ec_free(o.N);
+    if (base.setup == CollapseSetup::FreeSpace && N >= 3) j["critical"]["ec_free"] = theory::ec_free(N);
     if (!o.quiet && !json_stdout) {
       fmt::print("\ncritical restitution: collapses up to e = {}, none at e = {} (ICW e_c^wall({}) = {:.6f}, cushion {:.6f}{})\n",
-                 num(last_collapsing), num(next_clean), o.N, icw, cushion,
-                 base.setup == CollapseSetup::FreeSpace && o.N >= 3 ? fmt::format(", free-space e_c({}) = {:.6f}", o.N, theory::ec_free(o.N)) : "");
+                 num(last_collapsing), num(next_clean), N, icw, cushion,
+                 base.setup == CollapseSetup::FreeSpace && N >= 3 ? fmt::format(", free-space e_c({}) = {:.6f}", N, theory::ec_free(N)) : "");
     }
   }
 

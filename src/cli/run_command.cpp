@@ -54,9 +54,10 @@ Subcommand add_run_command(CLI::App& app) {
       "in the results store (--db). Exit codes: 0 ok, 2 bad input (nothing written), 3 the\n"
       "simulation turned unphysical (nothing written), 4 the results store could not be written.");
   auto& impl = *impl_;
-  for (const ParameterInfo& p : run_parameters()) {
-    impl.flag_options[p.name] = sub_->add_option("--" + p.name, impl.flag_values[p.name], p.help)
-                                    ->type_name(p.type)
+  for (const Parameter& p : run_parameters()) {
+    if (!(p.uses & kUseRun)) continue;
+    impl.flag_options[p.name] = sub_->add_option("--" + p.name, impl.flag_values[p.name], p.help())
+                                    ->type_name(p.type_name())
                                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   }
   sub_->add_option("--config", impl.config_path,

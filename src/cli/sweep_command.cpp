@@ -89,13 +89,14 @@ Subcommand add_sweep_command(CLI::App& app) {
       "`granchain merge`. Exit codes: 0 ok, 2 bad input (nothing run), 3 some points turned unphysical\n"
       "(the others are stored), 4 the results store could not be written.");
   auto& impl = *impl_;
-  for (const ParameterInfo& p : run_parameters()) {
-    std::string help = p.help;
+  for (const Parameter& p : run_parameters()) {
+    if (!(p.uses & kUseSweep)) continue;
+    std::string help = p.help();
     if (is_grid(p.name)) help = (p.name == "engine" ? "comma LIST; " : "LIST or range; ") + help;
     if (p.name == "seed") help = "base seed: each point's seed derives from it, the point's parameters and replica; "
                                  "integer 0 <= seed <= 9223372036854775807; default 1";
     impl.flag_options[p.name] = sub_->add_option("--" + p.name, impl.flag_values[p.name], help)
-                                    ->type_name(is_grid(p.name) ? "LIST" : p.type)
+                                    ->type_name(is_grid(p.name) ? "LIST" : p.type_name())
                                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   }
   sub_->add_option("--sweep", impl.sweep_path,
@@ -158,9 +159,9 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     for (const auto& [name, opt] : impl.flag_options) {
       if (auto v = take(name, impl.flag_values[name], opt->count() > 0)) {
         if (name == "seed") {
-          def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", v->text, 0, 9223372036854775807LL));
+          def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", std::get<std::string>(v->value), 0, 9223372036854775807LL));
         } else if (name == "db") {
-          db_path = v->text;
+          db_path = std::get<std::string>(v->value);
           if (db_path.empty()) throw InputError("--db: the path is empty; give a file name");
         } else {
           def.raw[name] = *v;
@@ -170,7 +171,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     // A flag given with an empty value ("--shard ''") is given, and refused as such.
     const auto given = [&](const char* flag) { return sub_->get_option(flag)->count() > 0; };
     if (auto v = take("replicas", impl.replicas, given("--replicas")))
-      def.replicas = static_cast<int>(integer_in("--replicas", v->text, 1, 1000000));
+      def.replicas = static_cast<int>(integer_in("--replicas", std::get<std::string>(v->value), 1, 1000000));
     if (given("--threads")) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
     if (given("--shard")) std::tie(shard_i, shard_n) = parse_shard(impl.shard);
     if (given("--time-limit")) time_limit = parse_duration(impl.time_limit, "--time-limit");

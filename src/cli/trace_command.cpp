@@ -42,11 +42,8 @@ Subcommand add_trace_command(CLI::App& app) {
       "--setup free: launch --realization of `granchain collapse` (free space, Sec. III.D).\n"
       "Writes CSV (t, z1, ..., zN) sampled every --dt in [--from, --to]; --events FILE adds every contact\n"
       "begin/end and floor hit of the window; --plot PNG draws z_i(t) (PNG and PDF) with Debian's python3.");
-  for (const char* name : {"N", "e", "k", "T0", "seed", "engine", "dt-factor", "m", "d", "g"}) {
-    for (const ParameterInfo& p : run_parameters())
-      if (p.name == name)
-        impl_->options[name] = sub_->add_option("--" + p.name, impl_->values[name], p.help)->type_name(p.type);
-  }
+  for (const Parameter& p : run_parameters())
+    if (p.uses & kUseTrace) impl_->options[p.name] = sub_->add_option("--" + p.name, impl_->values[p.name], p.help())->type_name(p.type_name());
   sub_->add_option("--setup", impl_->setup, "driven (default) or free");
   sub_->add_option("--from", impl_->from, "start of the window; >= 0; default 0");
   sub_->add_option("--to", impl_->to, "end of the window; > from; default 1");
@@ -72,7 +69,7 @@ int execute_trace(const std::shared_ptr<TraceFlags>& impl_) {
       if (opt->count() > 0) raw[name] = RawValue{o.values[name], ""};
     if (o.setup != "driven" && o.setup != "free")
       throw InputError(fmt::format("--setup = '{}' is not a set-up; valid: driven, free", o.setup));
-    const EngineInfo* named = raw.count("engine") ? find_engine(raw["engine"].text) : nullptr;
+    const EngineInfo* named = raw.count("engine") ? find_engine(raw["engine"].text()) : nullptr;
     if (named != nullptr && named->hard_spheres)
       throw InputError("--engine: trace needs a soft engine (exact or reference); hard spheres have no overlaps to draw");
     spec.run = resolve_run_options(raw).spec;

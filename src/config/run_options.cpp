@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -15,145 +14,116 @@ namespace granchain {
 
 namespace {
 
-std::string where(const RawValue& v) { return v.source.empty() ? "" : " (from " + v.source + ")"; }
-
-std::string strip(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t");
-  std::string out = s.substr(b, e - b + 1);
-  if (!out.empty() && out.front() == '+') out.erase(0, 1);
-  return out;
-}
-
-// Strict real number: the whole text must be a number, and it must be finite.
-double parse_real(const std::string& name, const RawValue& v, const std::string& range) {
-  const std::string t = strip(v.text);
-  double x = 0;
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())  // beyond a double, or below its least
-    throw InputError(fmt::format("--{} = '{}'{} is out of range: {}; valid range: {}", name, v.text, where(v),
-                                 std::abs(std::strtod(t.c_str(), nullptr)) > 1 ? "larger than the largest double"
-                                                                                : "smaller than the least positive double",
-                                 range));
-  if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}'{} is not a number; valid range: {}", name, v.text, where(v), range));
-  if (!std::isfinite(x))
-    throw InputError(fmt::format("--{} = '{}'{} is not finite; valid range: {}", name, v.text, where(v), range));
-  return x;
-}
-
-long long parse_integer(const std::string& name, const RawValue& v, const std::string& range) {
-  const std::string t = strip(v.text);
-  long long x = 0;
-  const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-  if (!t.empty() && ec == std::errc::result_out_of_range && p == t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}'{} is out of range; valid range: {}", name, v.text, where(v), range));
-  if (t.empty() || ec != std::errc() || p != t.data() + t.size())
-    throw InputError(fmt::format("--{} = '{}'{} is not an integer; valid range: {}", name, v.text, where(v), range));
-  return x;
-}
-
-[[noreturn]] void out_of_range(const std::string& name, const RawValue& v, const std::string& range) {
-  throw InputError(fmt::format("--{} = {}{} is out of range; valid range: {}", name, strip(v.text), where(v), range));
-}
-
+// A parameter of the driven column and what it sets. T and transient are kept aside (`late`):
+// their defaults depend on N.
 struct Definition {
-  ParameterInfo info;
-  std::function<void(RunOptions&, const RawValue&, std::map<std::string, double>&)> apply;
+  Parameter info;
+  std::function<void(RunOptions&, const Parameter&, const RawValue&, std::map<std::string, double>&)> apply;
 };
 
-// Real parameter with an open/closed interval check.
-Definition real_param(std::string name, std::string meaning, std::string range, std::string dflt,
-                      std::function<bool(double)> ok, std::function<void(RunOptions&, double)> set) {
-  std::string help = meaning + "; " + range + (dflt.empty() ? "" : "; default " + dflt);
-  return {{name, help, "REAL"}, [name, range, ok, set](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-            const double x = parse_real(name, v, range);
-            if (!ok(x)) out_of_range(name, v, range);
-            set(o, x);
+template <class Set>
+Definition real(Parameter p, Set set) {
+  p.type = ParameterType::Real;
+  return {std::move(p), [set](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+            set(o, read_real(q, v));
           }};
 }
 
+template <class Set>
+Definition integer(Parameter p, Set set) {
+  p.type = ParameterType::Integer;
+  return {std::move(p), [set](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+            set(o, read_integer(q, v));
+          }};
+}
+
+Definition late_real(Parameter p) {
+  p.type = ParameterType::Real;
+  return {std::move(p), [](RunOptions&, const Parameter& q, const RawValue& v, std::map<std::string, double>& late) {
+            late[q.name] = read_real(q, v);
+          }};
+}
+
+// The driven column's parameters (Sec. II of the paper; units m = d = g = 1 unless set).
 const std::vector<Definition>& definitions() {
   static const std::vector<Definition> defs = [] {
+    const HardSphereOptions hard;
     std::vector<Definition> d;
-    d.push_back({{"N", "number of particles; integer N >= 1 (up to 100000); default 25", "INT"},
-                 [](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                   const std::string range = "integer 1 <= N <= 100000";
-                   const long long n = parse_integer("N", v, range);
-                   if (n < 1 || n > 100000) out_of_range("N", v, range);
-                   o.spec.params.N = static_cast<int>(n);
-                 }});
-    d.push_back(real_param("e", "restitution coefficient of a binary collision", "0 < e <= 1", "0.9",
-                           [](double x) { return x > 0 && x <= 1; }, [](RunOptions& o, double x) { o.spec.params.e = x; }));
-    d.push_back(real_param("k", "elastic constant of the spring (hard-sphere limit: k -> infinity at fixed e)", "k > 0", "1e5",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.k = x; }));
-    d.push_back(real_param("T0", "temperature of the thermal floor, k_B T0", "T0 > 0", "1",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.kT0 = x; }));
-    d.push_back({{"T", "measuring time (window after the transient); T > 0; default 1e4 for N < 50, 1e3 for N >= 50 (the paper's)", "REAL"},
-                 [](RunOptions&, const RawValue& v, std::map<std::string, double>& late) {
-                   const double x = parse_real("T", v, "T > 0");
-                   if (!(x > 0)) out_of_range("T", v, "T > 0");
-                   late["T"] = x;
-                 }});
-    d.push_back({{"transient", "discarded time before the measuring window; transient >= 0; default T/10", "REAL"},
-                 [](RunOptions&, const RawValue& v, std::map<std::string, double>& late) {
-                   const double x = parse_real("transient", v, "transient >= 0");
-                   if (!(x >= 0)) out_of_range("transient", v, "transient >= 0");
-                   late["transient"] = x;
-                 }});
-    d.push_back({{"seed", "random seed (initial state and floor); integer 0 <= seed <= 9223372036854775807; default 1", "INT"},
-                 [](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                   const std::string range = "integer 0 <= seed <= 9223372036854775807";
-                   const long long s = parse_integer("seed", v, range);
-                   if (s < 0) out_of_range("seed", v, range);
-                   o.spec.seed = static_cast<std::uint64_t>(s);
-                 }});
+    d.push_back(integer({"N", {}, "", "number of particles", "integer 1 <= N <= 100000", "25", kUseDriven | kUseTrace, EngineScope::Any, true, "N",
+                         [](double x) { return x >= 1 && x <= 100000; }},
+                        [](RunOptions& o, long long n) { o.spec.params.N = static_cast<int>(n); }));
+    d.push_back(real({"e", {}, "", "restitution coefficient of a binary collision", "0 < e <= 1", "0.9", kUseDriven | kUseTrace, EngineScope::Any, true,
+                      "e", [](double x) { return x > 0 && x <= 1; }},
+                     [](RunOptions& o, double x) { o.spec.params.e = x; }));
+    d.push_back(real({"k", {}, "m g / d", "elastic constant of the spring (hard-sphere limit: k -> infinity at fixed e)", "k > 0", "1e5",
+                      kUseDriven | kUseTrace, EngineScope::Soft, true, "k", [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.params.k = x; }));
+    d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0", "T0 > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, true,
+                      "T0", [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.params.kT0 = x; }));
+    d.push_back(late_real({"T", {}, "sqrt(d / g)", "measuring time (window after the transient)", "T > 0",
+                           "1e4 for N < 50, 1e3 for N >= 50 (the paper's)", kUseDriven, EngineScope::Any, true, "T",
+                           [](double x) { return x > 0; }}));
+    d.push_back(late_real({"transient", {}, "sqrt(d / g)", "discarded time before the measuring window", "transient >= 0", "T/10",
+                           kUseDriven, EngineScope::Any, false, "transient", [](double x) { return x >= 0; }}));
+    d.push_back(integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807", "1",
+                         kUseDriven | kUseTrace, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }},
+                        [](RunOptions& o, long long s) { o.spec.seed = static_cast<std::uint64_t>(s); }));
     {
       const std::string names = engine_name_list();
-      d.push_back({{"engine", "time integrator; one of: " + names + "; default " + std::string(engines().front().name) +
-                                  " (reference = the paper's 2nd-order Runge-Kutta with dt = tau_c/dt-factor)", "NAME"},
-                   [names](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                     if (const EngineInfo* e = find_engine(strip(v.text))) {
+      Parameter p{"engine", ParameterType::Name, "", "time integrator (reference = the paper's 2nd-order Runge-Kutta with dt = tau_c/dt-factor)",
+                  "one of: " + names, std::string(engines().front().name), kUseDriven | kUseTrace, EngineScope::Any, true, "engine", {}};
+      d.push_back({std::move(p), [names](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+                     const std::string name = read_name(q, v);
+                     if (const EngineInfo* e = find_engine(name)) {
                        o.spec.engine.kind = e->kind;
                        return;
                      }
-                     throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", v.text, where(v), names));
+                     throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", v.text(), from_where(v), names));
                    }});
     }
-    d.push_back(real_param("dt-factor", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6", "100",
-                           [](double x) { return x >= 10 && x <= 1e6; }, [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
+    d.push_back(real({"dt-factor", {}, "", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6", "100",
+                      kUseDriven | kUseTrace, EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }},
+                     [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
     // The hard engine declares an inelastic collapse when collapse_collisions (1000) collisions
     // fall within collapse_time (1e-9). A TC time shorter than that span leaves collisions inside
     // it inelastic, and the watch can fire although the TC model is on (N = 100, e = 0.05 collapses
     // at tc = 1e-10, runs at 1e-9); from tc = collapse_time on, every further collision of a
     // particle inside the span is elastic.
-    d.push_back(real_param("tc", "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
-                           fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
-                                       "a shorter t_c leaves them inelastic)",
-                                       HardSphereOptions{}.collapse_time, HardSphereOptions{}.collapse_collisions,
-                                       HardSphereOptions{}.collapse_time),
-                           "0", [](double x) { return x == 0 || x >= HardSphereOptions{}.collapse_time; },
-                           [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
-    d.push_back(real_param("m", "particle mass (unit of mass)", "m > 0", "1",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.m = x; }));
-    d.push_back(real_param("d", "particle diameter (unit of length)", "d > 0", "1",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.d = x; }));
-    d.push_back(real_param("g", "gravitational acceleration", "g > 0", "1",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.params.g = x; }));
-    d.push_back(real_param("sample-interval", "time between profile samples (rounded to whole engine steps); 16 to 1e10 samples in T, at least 1e6 clock resolutions", "sample-interval > 0", "0.01",
-                           [](double x) { return x > 0; }, [](RunOptions& o, double x) { o.spec.sample_interval = x; }));
-    d.push_back({{"bins", "time bins for the blocking error analysis; power of two, 16 <= bins <= 65536; default 1024", "INT"},
-                 [](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                   const std::string range = "power of two, 16 <= bins <= 65536";
-                   const long long b = parse_integer("bins", v, range);
-                   if (b < 16 || b > 65536 || (b & (b - 1)) != 0) out_of_range("bins", v, range);
-                   o.spec.bins = static_cast<int>(b);
-                 }});
-    d.push_back({{"db", "results store (SQLite file), created if missing; default granchain.db in the working folder", "PATH"},
-                 [](RunOptions& o, const RawValue& v, std::map<std::string, double>&) {
-                   if (strip(v.text).empty()) throw InputError("--db: the path is empty; give a file name");
-                   o.db_path = v.text;
+    d.push_back(real({"tc", {}, "sqrt(d / g)",
+                      "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
+                      fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
+                                  "a shorter t_c leaves them inelastic)",
+                                  hard.collapse_time, hard.collapse_collisions, hard.collapse_time),
+                      "0", kUseDriven, EngineScope::Hard, false, "tc",
+                      [min = hard.collapse_time](double x) { return x == 0 || x >= min; }},
+                     [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
+    d.push_back(real({"m", {}, "", "particle mass (unit of mass)", "m > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "m",
+                      [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.params.m = x; }));
+    d.push_back(real({"d", {}, "", "particle diameter (unit of length)", "d > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "d",
+                      [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.params.d = x; }));
+    d.push_back(real({"g", {}, "", "gravitational acceleration", "g > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "g",
+                      [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.params.g = x; }));
+    d.push_back(real({"sample-interval", {}, "sqrt(d / g)",
+                      "time between profile samples (rounded to whole engine steps); 16 to 1e10 samples in T, at least 1e6 clock resolutions",
+                      "sample-interval > 0", "0.01", kUseDriven, EngineScope::Any, false, "sample_interval", [](double x) { return x > 0; }},
+                     [](RunOptions& o, double x) { o.spec.sample_interval = x; }));
+    d.push_back(integer({"bins", {}, "", "time bins for the blocking error analysis", "power of two, 16 <= bins <= 65536", "1024",
+                         kUseDriven, EngineScope::Any, false, "bins",
+                         [](double x) {
+                           const auto b = static_cast<long long>(x);
+                           return b >= 16 && b <= 65536 && (b & (b - 1)) == 0;
+                         }},
+                        [](RunOptions& o, long long b) { o.spec.bins = static_cast<int>(b); }));
+    d.push_back({{"db", ParameterType::Path, "", "results store (SQLite file), created if missing", "a file name",
+                  "granchain.db in the working folder", kUseRun | kUseSweep | kUsePython, EngineScope::Any, false, "", {}},
+                 [](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+                   const std::string path = read_name(q, v);
+                   if (path.empty()) throw InputError("--db: the path is empty; give a file name");
+                   o.db_path = std::get<std::string>(v.value);
                  }});
     return d;
   }();
@@ -166,19 +136,11 @@ const std::vector<Definition>& definitions() {
 // mean nothing (k = 1e300: tau_c = 2e-150, every contact begins and ends at one clock value) or
 // an exploded column (m = 1e-300: speeds of 1e150, heights of 1e149 after t = 1).
 
-// Resolution steps a scale must span: the exact engine steps over what it cannot resolve in
-// intervals of 1e-6 tau_c (ExactEngine::kResolutionSkip), the reference engine's finest step is
-// tau_c / 1e6 (dt-factor <= 1e6), and heights are asked to resolve d to the same 1e-6.
-constexpr double kResolutionSteps = 1e6;
+// Resolution steps a scale must span (kResolutionSteps): the exact engine steps over what it
+// cannot resolve in intervals of 1e-6 tau_c (ExactEngine::kResolutionSkip), the reference engine's
+// finest step is tau_c / 1e6 (dt-factor <= 1e6), and heights are asked to resolve d to the same 1e-6.
 
 double ulp(double t) { return std::nextafter(t, std::numeric_limits<double>::infinity()) - t; }
-
-// x to 3 significant digits, rounded into the valid range (down for an upper bound).
-std::string rounded(double x, bool upper) {
-  if (!(x > 0) || !std::isfinite(x)) return fmt::format("{:.3g}", x);
-  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2);
-  return fmt::format("{:.3g}", (upper ? std::floor(x / unit) : std::ceil(x / unit)) * unit);
-}
 
 // The flag a message names: the first of `names` that was given and fails with every other
 // parameter at its default (fails(name) says so), else the first that was given.
@@ -223,16 +185,16 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
   const double pi2 = std::numbers::pi * std::numbers::pi;
   std::string range;
   if (name == "k") {
-    range = fmt::format("0 < k <= {} at m = {}, e = {} and transient + T = {}", rounded(p.m * (pi2 + l2) / (2 * tau_min * tau_min), true),
+    range = fmt::format("0 < k <= {} at m = {}, e = {} and transient + T = {}", rounded_bound(p.m * (pi2 + l2) / (2 * tau_min * tau_min), true),
                         p.m, p.e, t_end);
   } else if (name == "m") {
-    range = fmt::format("m >= {} at k = {}, e = {} and transient + T = {}", rounded(2 * p.k * tau_min * tau_min / (pi2 + l2), false),
+    range = fmt::format("m >= {} at k = {}, e = {} and transient + T = {}", rounded_bound(2 * p.k * tau_min * tau_min / (pi2 + l2), false),
                         p.k, p.e, t_end);
   } else {  // the largest t_end whose ulp, 2^(ilogb(t) - 52), is at most tau_c / 1e6 (times 2^53: fine)
     const double t_max = std::ldexp(1.0, 53 + std::ilogb(tau(p.k, p.m, p.e) / kResolutionSteps) + (fine ? 53 : 0));
-    range = fmt::format("transient + T < {} at k = {}, m = {} and e = {}", rounded(t_max, true), p.k, p.m, p.e);
+    range = fmt::format("transient + T < {} at k = {}, m = {} and e = {}", rounded_bound(t_max, true), p.k, p.m, p.e);
   }
-  out_of_range(name, given_or(raw, name, name == "k" ? p.k : name == "m" ? p.m : o.spec.T),
+  value_out_of_range(name, given_or(raw, name, name == "k" ? p.k : name == "m" ? p.m : o.spec.T),
                fmt::format("{}: a contact (tau_c = {:.3g} here) must last at least 1e6 times the {} engine's clock resolution "
                            "at t = transient + T ({:.3g})", range, tau(p.k, p.m, p.e), engine.name,
                            shortest_resolved_time(t_end, fine) / kResolutionSteps));
@@ -257,11 +219,11 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
   });
   const double room = R - p.N;  // T0 / (m g d) may be at most this
   std::string range;
-  if (name == "m") range = fmt::format("m >= {} at T0 = {}, g = {}, d = {}", rounded(p.kT0 / p.g / p.d / room, false), p.kT0, p.g, p.d);
-  else if (name == "T0") range = fmt::format("0 < T0 <= {} at m = {}, g = {}, d = {}", rounded(p.m * p.g * p.d * room, true), p.m, p.g, p.d);
-  else if (name == "g") range = fmt::format("g >= {} at T0 = {}, m = {}, d = {}", rounded(p.kT0 / p.m / p.d / room, false), p.kT0, p.m, p.d);
-  else range = fmt::format("d >= {} at T0 = {}, m = {}, g = {}", rounded(p.kT0 / p.m / p.g / room, false), p.kT0, p.m, p.g);
-  out_of_range(name, given_or(raw, name, name == "m" ? p.m : name == "T0" ? p.kT0 : name == "g" ? p.g : p.d),
+  if (name == "m") range = fmt::format("m >= {} at T0 = {}, g = {}, d = {}", rounded_bound(p.kT0 / p.g / p.d / room, false), p.kT0, p.g, p.d);
+  else if (name == "T0") range = fmt::format("0 < T0 <= {} at m = {}, g = {}, d = {}", rounded_bound(p.m * p.g * p.d * room, true), p.m, p.g, p.d);
+  else if (name == "g") range = fmt::format("g >= {} at T0 = {}, m = {}, d = {}", rounded_bound(p.kT0 / p.m / p.d / room, false), p.kT0, p.m, p.d);
+  else range = fmt::format("d >= {} at T0 = {}, m = {}, g = {}", rounded_bound(p.kT0 / p.m / p.g / room, false), p.kT0, p.m, p.g);
+  value_out_of_range(name, given_or(raw, name, name == "m" ? p.m : name == "T0" ? p.kT0 : name == "g" ? p.g : p.d),
                fmt::format("{} and N = {}: the column's height scale N d + T0 / (m g) must stay below {:.2g} d, where heights "
                            "resolve d to 1e-6", range, p.N, R));
 }
@@ -276,39 +238,9 @@ double largest_resolved_k(double m, double e, double t, bool fine) {
   return m * (std::numbers::pi * std::numbers::pi + l2) / (2 * tau_min * tau_min);
 }
 
-namespace {
-
-// The clock's scale over a collapse launch (run_options.hpp).
-double launch_time_scale(int N, double a, double v0, double d) { return 2.0 * (N + 1) * (a + d) / v0; }
-
-}  // namespace
-
-void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0, bool fine) {
-  const double t = launch_time_scale(N, a, v0, d);
-  const double k_max = largest_resolved_k(m, e, t, fine);
-  if (!(k <= k_max))
-    throw InputError(fmt::format("--k: {:g} is out of range; valid range: 0 < k <= {} at e = {:g}, N = {}, a = {:g}, v0 = {:g} "
-                                 "(a contact must last at least 1e6 times the engine's clock resolution, {:.3g}, over the "
-                                 "launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g})",
-                                 k, rounded(k_max, true), e, N, a, v0, shortest_resolved_time(t, fine) / kResolutionSteps, t));
-}
-
-void check_collapse_launch(int N, double a, double v0, double d) {
-  const double t = launch_time_scale(N, a, v0, d);
-  if (!(t <= 1e6))
-    throw InputError(fmt::format("--a = {:g}, --v0 = {:g}: the launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g} is out of range; "
-                                 "valid range: <= 1e6 (a launch is given up at t = 1e7)", a, v0, t));
-}
-
-void check_collapse_tc(double tc, double collapse_time) {
-  if (!(tc == 0 || tc >= collapse_time))
-    throw InputError(fmt::format("--tc = {:g} is out of range; valid range: tc = 0 (off) or tc >= collapse-time = {:g}", tc,
-                                 collapse_time));
-}
-
-const std::vector<ParameterInfo>& run_parameters() {
-  static const std::vector<ParameterInfo> infos = [] {
-    std::vector<ParameterInfo> v;
+const std::vector<Parameter>& run_parameters() {
+  static const std::vector<Parameter> infos = [] {
+    std::vector<Parameter> v;
     for (const auto& d : definitions()) v.push_back(d.info);
     return v;
   }();
@@ -322,16 +254,13 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
     bool known = false;
     for (const auto& d : definitions()) {
       if (d.info.name == key) {
-        d.apply(o, value, late);
+        d.apply(o, d.info, value, late);
         known = true;
         break;
       }
     }
-    if (!known) {
-      std::string names;
-      for (const auto& d : definitions()) names += (names.empty() ? "" : ", ") + d.info.name;
-      throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", key, where(value), names));
-    }
+    if (!known)
+      throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", key, from_where(value), parameter_names(run_parameters())));
   }
   if (engine_info(o.spec.engine.kind).hard_spheres) {
     if (raw.count("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
@@ -345,14 +274,14 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   check_height_scale(o, raw);
   // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
   if (!(o.spec.transient + o.spec.T <= 1e15))
-    out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",
+    value_out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",
                                                                       raw.count("transient") ? o.spec.transient : o.spec.T),
                  "transient + T <= 1e15 (the clock must still advance by steps of order 1)");
   // The profile histograms hold (1 + 3N) bins doubles: at most 1 GiB.
   if (static_cast<double>(1 + 3 * o.spec.params.N) * o.spec.bins * 8.0 > 1073741824.0) {
     const bool bins_given = raw.count("bins") > 0;
     const long long n_max = (1073741824LL / (8LL * o.spec.bins) - 1) / 3;
-    out_of_range(bins_given ? "bins" : "N", given_or(raw, bins_given ? "bins" : "N", bins_given ? o.spec.bins : o.spec.params.N),
+    value_out_of_range(bins_given ? "bins" : "N", given_or(raw, bins_given ? "bins" : "N", bins_given ? o.spec.bins : o.spec.params.N),
                  bins_given ? fmt::format("bins <= {} at N = {} (the profile histograms, (1 + 3N) x bins doubles, take at most 1 GiB)",
                                           1073741824LL / (8LL * (1 + 3LL * o.spec.params.N)), o.spec.params.N)
                             : fmt::format("N <= {} at bins = {} (the profile histograms, (1 + 3N) x bins doubles, take at most 1 GiB)",
@@ -367,18 +296,18 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
     const std::string name = interval_given || !raw.count("T") ? "sample-interval" : "T";
     const RawValue& given = given_or(raw, name, name == "T" ? o.spec.T : o.spec.sample_interval);
     if (!(samples >= 16 && samples <= 1e10))
-      out_of_range(name, given,
+      value_out_of_range(name, given,
                    name == "T" ? fmt::format("16 sample-intervals <= T <= 1e10 sample-intervals, i.e. {} <= T <= {} at "
                                              "sample-interval = {} (a window of 16 to 1e10 profile samples)",
-                                             rounded(16 * o.spec.sample_interval, false), rounded(1e10 * o.spec.sample_interval, true),
+                                             rounded_bound(16 * o.spec.sample_interval, false), rounded_bound(1e10 * o.spec.sample_interval, true),
                                              o.spec.sample_interval)
                                : fmt::format("T / 1e10 <= sample-interval <= T / 16, i.e. {} <= sample-interval <= {} at T = {} "
                                              "(a window of 16 to 1e10 profile samples)",
-                                             rounded(o.spec.T / 1e10, false), rounded(o.spec.T / 16, true), o.spec.T));
+                                             rounded_bound(o.spec.T / 1e10, false), rounded_bound(o.spec.T / 16, true), o.spec.T));
     if (o.spec.sample_interval < shortest_resolved_time(t_end))
-      out_of_range("sample-interval", given_or(raw, "sample-interval", o.spec.sample_interval),
+      value_out_of_range("sample-interval", given_or(raw, "sample-interval", o.spec.sample_interval),
                    fmt::format("sample-interval >= {} at transient + T = {} (1e6 times the clock's resolution there)",
-                               rounded(shortest_resolved_time(t_end), false), t_end));
+                               rounded_bound(shortest_resolved_time(t_end), false), t_end));
   }
   return o;
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "config/parameter.hpp"
 #include "simulation/driven_run.hpp"
 
 namespace granchain {
@@ -16,20 +17,8 @@ struct RunOptions {
   bool use_db = true;
 };
 
-struct ParameterInfo {
-  std::string name;          // flag without "--", also the config-file key
-  std::string help;          // meaning, valid range and default
-  std::string type;          // INT, REAL, NAME or PATH, for --help
-};
-
-// Every parameter that may come from a flag or a config file.
-const std::vector<ParameterInfo>& run_parameters();
-
-// A raw value and where it came from (for error messages).
-struct RawValue {
-  std::string text;
-  std::string source;  // "" for the command line, else "config file 'x'"
-};
+// Every parameter that may come from a flag or a config file (config/parameter.hpp).
+const std::vector<Parameter>& run_parameters();
 
 // Parses and validates raw values (unknown keys, bad numbers, out-of-range values all throw
 // InputError with one line naming the parameter and its valid range) and fills in defaults:
@@ -47,17 +36,7 @@ double shortest_resolved_time(double t, bool fine = false);
 // k <= m (pi^2 + ln^2 e) / (2 shortest_resolved_time(t, fine)^2). The largest such k.
 double largest_resolved_k(double m, double e, double t, bool fine = false);
 
-// A free-space or wall collapse (granchain collapse) has no measuring time: its clock runs over
-// the launch, t ~ 2 (N + 1)(a + d) / v0 (the outer particles reach the middle, or the wall, by
-// (N - 1)(a + d) / 2v0 and (N a + (N - 1) d) / v0, with a factor 2 for the spread of speeds and the
-// rebounds). Throws InputError "--k: ... is out of range" when k exceeds largest_resolved_k there
-// for the engine's clock (fine: the exact engine's).
-void check_collapse_contact_time(double k, double e, double m, double d, int N, double a, double v0, bool fine);
-// The launch must play out well inside the count's clock limit (a launch is given up at t = 1e7,
-// simulation/collapse_run.hpp): 2 (N + 1)(a + d) / v0 <= 1e6. Throws InputError naming --a or --v0.
-void check_collapse_launch(int N, double a, double v0, double d);
-// The hard engine's TC time acts on collisions within t_c of one another; the collapse watch
-// spans --collapse-time: t_c = 0 (off) or t_c >= collapse-time. Throws InputError naming --tc.
-void check_collapse_tc(double tc, double collapse_time);
+// The number of clock resolutions that a resolved interval spans (shortest_resolved_time).
+constexpr double kResolutionSteps = 1e6;
 
 }  // namespace granchain

@@ -15,7 +15,12 @@
 namespace granchain {
 
 const std::vector<std::string>& sweep_grid_parameters() {
-  static const std::vector<std::string> names = {"N", "e", "k", "T0", "T", "engine"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const Parameter& p : run_parameters())
+      if (p.sweep_axis) v.push_back(p.name);
+    return v;
+  }();
   return names;
 }
 
@@ -30,17 +35,36 @@ std::uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-std::vector<std::string> grid_values(const SweepDefinition& def, const std::string& name, const std::string& dflt) {
+// One value of a grid axis; not given: the run's default applies.
+struct AxisValue {
+  bool given = false;
+  RawValue value;
+};
+
+// The values of one grid axis, typed: each number of the list as the parameter's type (an
+// integer axis takes whole numbers; another value is passed as its text, which validation
+// refuses with the run's message), engine names as text. An axis not given holds one value,
+// "absent": the run's default applies.
+std::vector<AxisValue> grid_values(const SweepDefinition& def, const std::string& name) {
   const auto it = def.raw.find(name);
-  if (it == def.raw.end()) return {dflt};
+  if (it == def.raw.end()) return {AxisValue{}};
   const std::string option = "--" + name + (it->second.source.empty() ? "" : " (from " + it->second.source + ")");
-  if (name == "engine") {
-    std::vector<std::string> names = parse_name_list(it->second.text);
+  const Parameter& p = *find_parameter(run_parameters(), name);
+  std::vector<AxisValue> out;
+  if (p.type == ParameterType::Name) {
+    std::vector<std::string> names = parse_name_list(it->second.text());
     if (names.empty()) throw InputError(option + ": the list is empty; give engine names such as exact,reference");
-    return names;
+    for (auto& n : names) out.push_back({true, RawValue{n}});
+    return out;
   }
-  std::vector<std::string> out;
-  for (double x : parse_value_list(it->second.text, option)) out.push_back(exact_decimal(x));
+  for (double x : parse_value_list(it->second.text(), option)) {
+    if (p.type == ParameterType::Integer && x == std::floor(x) && std::abs(x) < 9.2e18)
+      out.push_back({true, RawValue{static_cast<long long>(x)}});
+    else if (p.type == ParameterType::Integer)
+      out.push_back({true, RawValue{exact_decimal(x)}});
+    else
+      out.push_back({true, RawValue{x}});
+  }
   return out;
 }
 
@@ -59,18 +83,17 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
       scalar[name] = value;
   }
   if (scalar.count("seed")) throw InputError("--seed: a sweep takes a base seed (--seed of sweep), not a run seed");
-  const auto Ns = grid_values(def, "N", "25");
-  const auto es = grid_values(def, "e", "0.9");
-  const auto ks = grid_values(def, "k", "100000");
-  const auto T0s = grid_values(def, "T0", "1");
-  const auto engines = grid_values(def, "engine", granchain::engines().front().name);
+  const auto Ns = grid_values(def, "N");
+  const auto es = grid_values(def, "e");
+  const auto ks = grid_values(def, "k");
+  const auto T0s = grid_values(def, "T0");
+  const auto Ts = grid_values(def, "T");
+  const auto engines = grid_values(def, "engine");
   // An unknown name is refused by resolve_run_options below, with the valid ones.
-  const auto is_hard = [](const std::string& name) {
-    const EngineInfo* e = find_engine(name);
+  const auto is_hard = [](const AxisValue& name) {
+    const EngineInfo* e = name.given ? find_engine(name.value.text()) : &granchain::engines().front();
     return e != nullptr && e->hard_spheres;
   };
-  const bool T_given = def.raw.count("T") > 0;
-  const auto Ts = T_given ? grid_values(def, "T", "") : std::vector<std::string>{""};
   const bool any_hard = std::any_of(engines.begin(), engines.end(), is_hard);
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
 
@@ -93,12 +116,15 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
             for (const auto& T : Ts) {
               std::map<std::string, RawValue> raw = scalar;
               if (!hard) raw.erase("tc");
-              raw["engine"] = {engine, ""};
-              raw["N"] = {N, ""};
-              raw["e"] = {e, ""};
-              if (!hard) raw["k"] = {ks[ik], ""};
-              raw["T0"] = {T0, ""};
-              if (T_given) raw["T"] = {T, ""};
+              const auto set = [&raw](const char* name, const AxisValue& v) {
+                if (v.given) raw[name] = v.value;
+              };
+              set("engine", engine);
+              set("N", N);
+              set("e", e);
+              if (!hard) set("k", ks[ik]);
+              set("T0", T0);
+              set("T", T);
               RunSpec spec = resolve_run_options(raw).spec;
               for (int r = 0; r < def.replicas; ++r) {
                 SweepPoint p;

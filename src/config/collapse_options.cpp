@@ -1,0 +1,169 @@
+#include "config/collapse_options.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "config/input_error.hpp"
+#include "config/run_options.hpp"
+#include "engines/engine_registry.hpp"
+
+namespace granchain {
+
+namespace {
+
+int all_cores() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+}  // namespace
+
+// Sec. III.D of the paper (free space) and Sec. II.C (a wall); no gravity, m = d = 1.
+const std::vector<Parameter>& collapse_parameters() {
+  static const std::vector<Parameter> table = [] {
+    const HardSphereOptions hard;
+    const unsigned c = kUseCollapse | kUsePython;
+    using T = ParameterType;
+    std::vector<Parameter> t;
+    t.push_back({"N", T::Integer, "", "number of particles", "integer 2 <= N <= 100000", "3", c, EngineScope::Any, false, "N",
+                 [](double x) { return x >= 2 && x <= 100000; }});
+    t.push_back({"e", T::RealList, "", "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1)", "0 < e <= 1", "0.03", c,
+                 EngineScope::Any, false, "e", [](double x) { return x > 0 && x <= 1; }});
+    t.push_back({"k", T::RealList, "m v0^2 / d^2", "elastic constants: a list or range (1e4:1e12:x10)", "k > 0",
+                 "1e4:1e10:x10 (not with --engine hard, whose k is infinite)", c, EngineScope::Soft, false, "k",
+                 [](double x) { return x > 0; }});
+    t.push_back({"engine", T::Name, "", "time integrator", "one of: " + engine_name_list() + " (reference engines: dt = tau_c/dt-factor; hard: k = infinity)",
+                 std::string(engines().front().name), c, EngineScope::Any, false, "engine", {}});
+    t.push_back({"setup", T::Name, "", "where the launch plays out: free space (Sec. III.D), or a wall of restitution e that "
+                 "Bernu-Mazighi spheres are thrown against (Sec. II.C)", "free or wall", "free", c, EngineScope::Any, false, "setup", {}});
+    t.push_back({"a", T::Real, "d", "initial space between neighbours (and particle 1 and the wall)", "a >= 0", "1", c, EngineScope::Any,
+                 false, "a", [](double x) { return x >= 0; }});
+    t.push_back({"v0", T::Real, "", "launch speed (inward in free space, toward the wall)", "v0 > 0", "1", c, EngineScope::Any, false, "v0",
+                 [](double x) { return x > 0; }});
+    t.push_back({"dv0", T::Real, "v0", "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1)", "dv0 >= 0", "0.1", c,
+                 EngineScope::Any, false, "dv0", [](double x) { return x >= 0; }});
+    t.push_back({"stop", T::Name, "", "stop rule: ends (the paper's, free space only) or strict (no pair approaches)", "ends or strict", "ends in free space, strict on a wall",
+                 c, EngineScope::Any, false, "stop_rule", {}});
+    t.push_back({"realizations", T::Integer, "", "random launches per (e, k) (two for an error bar)", "integer 2 <= realizations <= 10000000",
+                 "1000", c, EngineScope::Any, false, "realizations", [](double x) { return x >= 2 && x <= 10000000; }});
+    t.push_back({"seed", T::Integer, "", "base seed; launch r uses derive_seed(seed, r), the same at every e and k",
+                 "integer 0 <= seed <= 9223372036854775807", "1", c, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }});
+    t.push_back({"threads", T::Integer, "", "threads over launches (results do not depend on it)", "integer 1 <= threads <= 1024",
+                 "all cores", c, EngineScope::Any, false, "", [](double x) { return x >= 1 && x <= 1024; }});
+    t.push_back({"dt-factor", T::Real, "", "reference engines: dt = tau_c / dt-factor", "10 <= dt-factor <= 1e6", "100", c,
+                 EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }});
+    t.push_back({"tc", T::Real, "d / v0", "hard engine: TC model time t_c (a collision within t_c of a particle's previous one is elastic)",
+                 "tc = 0 (off) or tc >= collapse-time", "0 (off)", c, EngineScope::Hard, false, "tc", [](double x) { return x >= 0; }});
+    t.push_back({"collapse-collisions", T::Integer, "",
+                 "hard engine: collapse when this many consecutive collisions fit in --collapse-time (each launch keeps that many collision times)",
+                 "integer 2 <= collapse-collisions <= 10000000", fmt::format("{}", hard.collapse_collisions), c, EngineScope::Hard, false, "",
+                 [](double x) { return x >= 2 && x <= 10000000; }});
+    t.push_back({"collapse-time", T::Real, "d / v0", "hard engine: see --collapse-collisions", "collapse-time > 0",
+                 fmt::format("{:g}", hard.collapse_time), c, EngineScope::Hard, false, "", [](double x) { return x > 0; }});
+    return t;
+  }();
+  return table;
+}
+
+namespace {
+
+// The clock's scale over a launch: the outer particles reach the middle, or the wall, by
+// (N - 1)(a + d) / 2v0 and (N a + (N - 1) d) / v0; a factor 2 for the spread of speeds and the
+// rebounds gives t ~ 2 (N + 1)(a + d) / v0.
+double launch_time_scale(int N, double a, double v0, double d) { return 2.0 * (N + 1) * (a + d) / v0; }
+
+// The launch must play out well inside the count's clock limit (a launch is given up at t = 1e7,
+// simulation/collapse_run.hpp): 2 (N + 1)(a + d) / v0 <= 1e6.
+void check_launch(int N, double a, double v0, double d) {
+  const double t = launch_time_scale(N, a, v0, d);
+  if (!(t <= 1e6))
+    throw InputError(fmt::format("--a = {:g}, --v0 = {:g}: the launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g} is out of range; "
+                                 "valid range: <= 1e6 (a launch is given up at t = 1e7)", a, v0, t));
+}
+
+// A contact must last 1e6 resolutions of the engine's clock over the launch's time scale
+// (largest_resolved_k, config/run_options.hpp).
+void check_contact_time(double k, double e, double m, double d, int N, double a, double v0, bool fine) {
+  const double t = launch_time_scale(N, a, v0, d);
+  const double k_max = largest_resolved_k(m, e, t, fine);
+  if (!(k <= k_max))
+    throw InputError(fmt::format("--k: {:g} is out of range; valid range: 0 < k <= {} at e = {:g}, N = {}, a = {:g}, v0 = {:g} "
+                                 "(a contact must last at least 1e6 times the engine's clock resolution, {:.3g}, over the "
+                                 "launch's time scale 2 (N + 1)(a + d) / v0 = {:.3g})",
+                                 k, rounded_bound(k_max, true), e, N, a, v0, shortest_resolved_time(t, fine) / kResolutionSteps, t));
+}
+
+}  // namespace
+
+CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& raw) {
+  const std::vector<Parameter>& table = collapse_parameters();
+  for (const auto& [name, value] : raw)
+    if (find_parameter(table, name) == nullptr)
+      throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", name, from_where(value), parameter_names(table)));
+  const auto given = [&](const char* name) { return raw.count(name) > 0; };
+  const auto value = [&](const char* name, RawValue dflt) { return given(name) ? raw.at(name) : dflt; };
+  const auto param = [&](const char* name) -> const Parameter& { return *find_parameter(table, name); };
+  const auto integer = [&](const char* name, long long dflt) { return given(name) ? read_integer(param(name), raw.at(name)) : dflt; };
+  const auto real = [&](const char* name, double dflt) { return given(name) ? read_real(param(name), raw.at(name)) : dflt; };
+
+  CollapseOptions o;
+  CollapseSpec& s = o.base;
+  s.params.N = static_cast<int>(integer("N", 3));
+  s.realizations = static_cast<int>(integer("realizations", 1000));
+  s.seed = static_cast<std::uint64_t>(integer("seed", 1));
+  s.threads = static_cast<int>(integer("threads", all_cores()));
+  const long long collapse_collisions = integer("collapse-collisions", HardSphereOptions{}.collapse_collisions);
+  o.es = read_real_list(param("e"), value("e", "0.03"));
+
+  const RawValue engine_value = value("engine", std::string(engines().front().name));
+  const std::string engine_text = read_name(param("engine"), engine_value);
+  const EngineInfo* engine = find_engine(engine_text);
+  if (engine == nullptr)
+    throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", engine_text, from_where(engine_value), engine_name_list()));
+  const bool hard = engine->hard_spheres;
+  if (hard) {
+    if (given("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
+    o.ks = {std::numeric_limits<double>::infinity()};
+  } else {
+    o.ks = read_real_list(param("k"), value("k", "1e4:1e10:x10"));
+    if (given("tc")) throw InputError("--tc: the TC model belongs to --engine hard");
+  }
+
+  const std::string setup = read_name(param("setup"), value("setup", "free"));
+  if (setup != "free" && setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", setup));
+  s.setup = setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
+  s.launch.a = real("a", 1.0);
+  s.launch.v0 = real("v0", 1.0);
+  s.params.g = 0.0;
+  check_launch(s.params.N, s.launch.a, s.launch.v0, s.params.d);
+  if (!hard)
+    for (double e : o.es)
+      for (double k : o.ks) check_contact_time(k, e, s.params.m, s.params.d, s.params.N, s.launch.a, s.launch.v0, engine->fine_clock);
+  const std::string stop = read_name(param("stop"), value("stop", s.setup == CollapseSetup::FreeSpace ? "ends" : "strict"));
+  if (stop != "ends" && stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", stop));
+  s.rule = stop == "ends" ? StopRule::Ends : StopRule::Strict;
+  if (s.rule == StopRule::Ends && s.setup == CollapseSetup::Wall)
+    throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
+  s.launch.dv0 = real("dv0", 0.1);
+  s.engine.kind = engine->kind;
+  s.engine.dt_factor = real("dt-factor", 100.0);
+  s.engine.hard.tc = real("tc", 0.0);
+  s.engine.hard.collapse_collisions = static_cast<std::uint64_t>(collapse_collisions);
+  s.engine.hard.collapse_time = real("collapse-time", HardSphereOptions{}.collapse_time);
+  // The TC time acts on collisions within t_c of one another; the collapse watch spans
+  // collapse-time: t_c = 0 (off) or t_c >= collapse-time (see the driven column's tc).
+  if (!(s.engine.hard.tc == 0 || s.engine.hard.tc >= s.engine.hard.collapse_time))
+    throw InputError(fmt::format("--tc = {:g} is out of range; valid range: tc = 0 (off) or tc >= collapse-time = {:g}",
+                                 s.engine.hard.tc, s.engine.hard.collapse_time));
+  // Every launch's outcome is kept in memory until the table is printed: at most 1e9 launches.
+  const double launches = static_cast<double>(o.es.size()) * static_cast<double>(o.ks.size()) * s.realizations;
+  if (launches > 1e9)
+    throw InputError(fmt::format("--realizations = {}: {} values of e times {} of k times the launches is {:.3g}; valid range: "
+                                 "at most 1e9 launches in one command", s.realizations, o.es.size(), o.ks.size(), launches));
+  if (!hard && (given("collapse-collisions") || given("collapse-time")))
+    throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
+  return o;
+}
+
+}  // namespace granchain

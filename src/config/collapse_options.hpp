@@ -1,0 +1,30 @@
+#pragma once
+// The parameters of a collapse count (`granchain collapse`, `granchain.collapse`): one table of
+// Parameter entries (config/parameter.hpp) and one function that reads and checks them, so that
+// the command line and the Python module accept the same values with the same messages.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "config/parameter.hpp"
+#include "simulation/collapse_run.hpp"
+
+namespace granchain {
+
+// Every parameter of a collapse count, in the order of --help.
+const std::vector<Parameter>& collapse_parameters();
+
+struct CollapseOptions {
+  CollapseSpec base;      // everything but e and k
+  std::vector<double> es;  // each e of the list, in order
+  std::vector<double> ks;  // each k of the list; {inf} for the hard-sphere engine
+};
+
+// Reads `raw` (names as in collapse_parameters(); a name of no entry is refused with the known
+// ones), fills in the defaults and checks every value and every combination: the engine's k and
+// TC model, the launch's time scale, each contact against the engine's clock, the stop rule
+// against the set-up, at most 1e9 launches. InputError on the first problem, one line naming the
+// parameter and its valid range.
+CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& raw);
+
+}  // namespace granchain
