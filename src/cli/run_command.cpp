@@ -142,7 +142,8 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     if (!impl.config_path.empty()) {
       for (auto& [key, value] : read_config_file(impl.config_path)) {
         if (key == "config") throw InputError(fmt::format("--config: '{}' may not name another config file", impl.config_path));
-        raw[key] = RawValue{value, fmt::format("config file '{}'", impl.config_path)};
+        raw[key] = value;
+        raw[key].source = fmt::format("config file '{}'", impl.config_path);
       }
     }
     for (const auto& [name, opt] : impl.flag_options)

@@ -49,6 +49,13 @@ bool is_grid(const std::string& name) {
   return std::find(g.begin(), g.end(), name) != g.end();
 }
 
+// A value as the text a flag would carry: text as given, a number of a sweep file as written
+// there (a real keeps its ".0", which an integer refuses).
+std::string as_text(const RawValue& v) {
+  if (const auto* t = std::get_if<std::string>(&v.value)) return *t;
+  return v.text();
+}
+
 long long integer_in(const std::string& option, const std::string& text, long long lo, long long hi) {
   return parse_integer_in(text, option, lo, hi);
 }
@@ -144,12 +151,16 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     if (launched_by_mpi_launcher() && !built_with_mpi())
       throw InputError("sweep: started by an MPI launcher, but this granchain was built without MPI "
                        "(install libopenmpi-dev and rebuild); run it without mpirun to use threads");
-    std::map<std::string, std::string> from_file;
+    std::map<std::string, RawValue> from_file;
     if (!impl.sweep_path.empty()) from_file = read_config_file(impl.sweep_path, "--sweep");
     auto take = [&](const std::string& name, const std::string& flag_text, bool given) -> std::optional<RawValue> {
       if (given) return RawValue{flag_text, ""};
       const auto it = from_file.find(name);
-      if (it != from_file.end()) return RawValue{it->second, fmt::format("sweep file '{}'", impl.sweep_path)};
+      if (it != from_file.end()) {
+        RawValue v = it->second;
+        v.source = fmt::format("sweep file '{}'", impl.sweep_path);
+        return v;
+      }
       return std::nullopt;
     };
     for (const auto& [key, value] : from_file) {
@@ -159,9 +170,9 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     for (const auto& [name, opt] : impl.flag_options) {
       if (auto v = take(name, impl.flag_values[name], opt->count() > 0)) {
         if (name == "seed") {
-          def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", std::get<std::string>(v->value), 0, 9223372036854775807LL));
+          def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", as_text(*v), 0, 9223372036854775807LL));
         } else if (name == "db") {
-          db_path = std::get<std::string>(v->value);
+          db_path = as_text(*v);
           if (db_path.empty()) throw InputError("--db: the path is empty; give a file name");
         } else {
           def.raw[name] = *v;
@@ -171,7 +182,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     // A flag given with an empty value ("--shard ''") is given, and refused as such.
     const auto given = [&](const char* flag) { return sub_->get_option(flag)->count() > 0; };
     if (auto v = take("replicas", impl.replicas, given("--replicas")))
-      def.replicas = static_cast<int>(integer_in("--replicas", std::get<std::string>(v->value), 1, 1000000));
+      def.replicas = static_cast<int>(integer_in("--replicas", as_text(*v), 1, 1000000));
     if (given("--threads")) threads = static_cast<int>(integer_in("--threads", impl.threads, 1, 1024));
     if (given("--shard")) std::tie(shard_i, shard_n) = parse_shard(impl.shard);
     if (given("--time-limit")) time_limit = parse_duration(impl.time_limit, "--time-limit");

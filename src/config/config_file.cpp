@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "config/input_error.hpp"
+#include "config/parameter.hpp"
 
 namespace granchain {
 
@@ -26,19 +27,10 @@ std::string normalize_key(std::string key) {
 
 namespace {
 
-// A file's real number as text that reads back exactly and stays a real: 3.0 is "3.0", so an
-// integer parameter given as a real (N = 3.0, or 2.9999999999999999, which is the same double) is
-// refused as the command line refuses --N 3.0, instead of being taken as 3.
-std::string real_text(double x) {
-  std::string t = fmt::format("{}", x);
-  if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
-  return t;
-}
-
 // Parameter files are a few hundred bytes; anything beyond this is not one.
 constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
 
-std::map<std::string, std::string> parse_json(const std::string& path, const std::string& text, const std::string& option) {
+std::map<std::string, RawValue> parse_json(const std::string& path, const std::string& text, const std::string& option) {
   // nlohmann::json keeps the last of repeated keys; its parse callback sees every key as it is
   // read, so a key that the object being read already holds is caught (in any object).
   std::vector<std::set<std::string>> open_objects;
@@ -68,24 +60,28 @@ std::map<std::string, std::string> parse_json(const std::string& path, const std
   }
   if (!repeated.empty()) throw InputError(fmt::format("{}: '{}': '{}' is set twice", option, path, repeated));
   if (!j.is_object()) throw InputError(fmt::format("{}: '{}' must hold one JSON object of parameters", option, path));
-  std::map<std::string, std::string> out;
+  std::map<std::string, RawValue> out;
   for (const auto& [key, value] : j.items()) {
-    std::string v;
+    RawValue v;
     if (value.is_array()) {
+      std::string list;
       for (const auto& item : value) {
         if (!(item.is_string() || item.is_number()))
           throw InputError(fmt::format("{}: '{}': the list '{}' may hold only numbers and strings", option, path, key));
-        v += (v.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>()
-                                       : item.is_number_float() ? real_text(item.get<double>()) : item.dump());
+        list += (list.empty() ? "" : ",") + (item.is_string() ? item.get<std::string>()
+                                             : item.is_number_float() ? real_text(item.get<double>()) : item.dump());
       }
+      v = RawValue{list};
     } else if (value.is_string()) {
-      v = value.get<std::string>();
-    } else if (value.is_number_integer() || value.is_number_unsigned()) {
-      v = value.dump();
+      v = RawValue{value.get<std::string>()};
+    } else if (value.is_number_unsigned() && value.get<unsigned long long>() > 9223372036854775807ULL) {
+      v = RawValue{value.dump()};  // beyond a long long: its digits, which the range check refuses
+    } else if (value.is_number_integer()) {
+      v = RawValue{value.get<long long>()};
     } else if (value.is_number_float()) {
-      v = real_text(value.get<double>());
+      v = RawValue{value.get<double>()};
     } else if (value.is_boolean()) {
-      v = value.get<bool>() ? "true" : "false";
+      v = RawValue{value.get<bool>() ? "true" : "false"};
     } else {
       throw InputError(fmt::format("{}: '{}': value of '{}' must be a number or a string", option, path, key));
     }
@@ -98,14 +94,14 @@ std::map<std::string, std::string> parse_json(const std::string& path, const std
 
 // TOML by toml++ (every valid TOML number: 1_000_000, 1e6, 0x10, inf), flat: parameters as
 // `key = value`, lists as arrays of numbers or strings. toml++ refuses a key defined twice.
-std::map<std::string, std::string> parse_toml(const std::string& path, const std::string& text, const std::string& option) {
+std::map<std::string, RawValue> parse_toml(const std::string& path, const std::string& text, const std::string& option) {
   toml::table table;
   try {
     table = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}: '{}' line {}: {}", option, path, e.source().begin.line, e.description()));
   }
-  std::map<std::string, std::string> out;
+  std::map<std::string, RawValue> out;
   auto scalar = [&](const toml::node& n, const std::string& key) -> std::string {
     if (const auto* i = n.as_integer()) return std::to_string(i->get());
     if (const auto* f = n.as_floating_point()) return real_text(f->get());
@@ -119,11 +115,17 @@ std::map<std::string, std::string> parse_toml(const std::string& path, const std
     if (node.is_table())
       throw InputError(fmt::format("{}: '{}' line {}: tables/sections are not supported; use flat 'key = value'", option, path,
                                    node.source().begin.line));
-    std::string value;
-    if (const auto* array = node.as_array()) {  // a sweep's list
-      for (const auto& item : *array) value += (value.empty() ? "" : ",") + scalar(item, key);
+    RawValue value;
+    if (const auto* array = node.as_array()) {  // a sweep's list, as the command line writes one
+      std::string list;
+      for (const auto& item : *array) list += (list.empty() ? "" : ",") + scalar(item, key);
+      value = RawValue{list};
+    } else if (const auto* i = node.as_integer()) {
+      value = RawValue{static_cast<long long>(i->get())};
+    } else if (const auto* f = node.as_floating_point()) {
+      value = RawValue{f->get()};
     } else {
-      value = scalar(node, key);
+      value = RawValue{scalar(node, key)};
     }
     // "dt_factor" and "dt-factor" name one parameter.
     if (!out.emplace(normalize_key(key), value).second)
@@ -186,7 +188,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-std::map<std::string, std::string> read_config_file(const std::string& path, const std::string& option) {
+std::map<std::string, RawValue> read_config_file(const std::string& path, const std::string& option) {
   const std::string text = read_parameter_file(path, option);
   if (ends_with(path, ".json")) return parse_json(path, text, option);
   if (ends_with(path, ".toml")) return parse_toml(path, text, option);

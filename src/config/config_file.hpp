@@ -9,11 +9,15 @@
 #include <map>
 #include <string>
 
+#include "config/parameter.hpp"
+
 namespace granchain {
 
-// key (flag spelling) -> value text. Throws InputError naming the file and line on any problem.
-// option names the flag in messages. Arrays ([3, 4, 5] or ["exact", "hard"]) become comma lists.
-std::map<std::string, std::string> read_config_file(const std::string& path, const std::string& option = "--config");
+// key (flag spelling) -> value: integers and reals typed as the file types them (N = 3 an
+// integer, N = 3.0 a real, which an integer parameter refuses), strings and booleans as text;
+// arrays ([3, 4, 5] or ["exact", "hard"]) become comma lists, as a sweep's flags write them.
+// Throws InputError naming the file and line on any problem; option names the flag in messages.
+std::map<std::string, RawValue> read_config_file(const std::string& path, const std::string& option = "--config");
 
 // Flag spelling of a key: underscores become dashes.
 std::string normalize_key(std::string key);

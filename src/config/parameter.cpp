@@ -29,7 +29,13 @@ const std::string* text_of(const RawValue& v) { return std::get_if<std::string>(
 std::string RawValue::text() const {
   if (const auto* t = std::get_if<std::string>(&value)) return strip(*t);
   if (const auto* i = std::get_if<long long>(&value)) return fmt::format("{}", *i);
-  return fmt::format("{}", std::get<double>(value));
+  return real_text(std::get<double>(value));
+}
+
+std::string real_text(double x) {
+  std::string t = fmt::format("{}", x);
+  if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
+  return t;
 }
 
 std::string from_where(const RawValue& v) { return v.source.empty() ? "" : " (from " + v.source + ")"; }
@@ -88,9 +94,7 @@ long long read_integer(const Parameter& p, const RawValue& v) {
   } else if (const auto* i = std::get_if<long long>(&v.value)) {
     x = *i;
   } else {  // a real number is an integer only as text says so: 3.0 is refused as "3.0" is
-    std::string shown = v.text();
-    if (shown.find_first_of(".eni") == std::string::npos) shown += ".0";
-    throw InputError(fmt::format("--{} = '{}'{} is not an integer; valid range: {}", p.name, shown, from_where(v), p.range));
+    throw InputError(fmt::format("--{} = '{}'{} is not an integer; valid range: {}", p.name, v.text(), from_where(v), p.range));
   }
   if (p.valid && !p.valid(static_cast<double>(x)))
     throw InputError(fmt::format("--{} = '{}'{} is out of range; valid range: {}", p.name, v.text(), from_where(v), p.range));

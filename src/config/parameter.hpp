@@ -40,9 +40,14 @@ struct RawValue {
   RawValue(long long x, std::string from = "") : value(x), source(std::move(from)) {}
   RawValue(double x, std::string from = "") : value(x), source(std::move(from)) {}
   // The value as a message shows it: text as given (blanks and a leading '+' dropped), numbers
-  // in their shortest round-trip form.
+  // in their shortest round-trip form (real_text for a real).
   std::string text() const;
 };
+
+// A real number as text that reads back exactly and stays a real: 3.0 is "3.0", so an integer
+// parameter given as a real (N = 3.0, or 2.9999999999999999, which is the same double) is refused
+// as the command line refuses --N 3.0, instead of being taken as 3.
+std::string real_text(double x);
 
 struct Parameter {
   std::string name;
