@@ -10,6 +10,7 @@
 
 #include "cli/interrupt_message.hpp"
 #include "cli/subcommand.hpp"
+#include "config/exit_codes.hpp"
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
 #include "provenance.hpp"
@@ -21,6 +22,46 @@
 namespace granchain {
 
 namespace {
+
+// The exit code of a figure's end (config/exit_codes.hpp).
+int exit_code(FigureStatus status) {
+  switch (status) {
+    case FigureStatus::Done: return kExitOk;
+    case FigureStatus::PointsFailed:
+    case FigureStatus::Unphysical: return kExitUnphysical;
+    case FigureStatus::NothingStored: return kExitBadInput;
+    case FigureStatus::TimeLimit: return kExitTimeLimit;
+    case FigureStatus::StoreFailed:
+    case FigureStatus::OutputFailed:
+    case FigureStatus::Failed: return kExitStoreFailed;
+  }
+  return kExitStoreFailed;
+}
+
+// The line on standard error for a figure that did not end Done ("" figure: the computing before
+// the figures under --time-limit).
+void report_failure(const std::string& figure, const FigureOutcome& out) {
+  const std::string name = figure.empty() ? "" : figure + ": ";
+  switch (out.status) {
+    case FigureStatus::Done:
+    case FigureStatus::PointsFailed: return;
+    case FigureStatus::TimeLimit:
+      fmt::print(stderr, "granchain: {}--time-limit: {}; every finished run is stored, {}repeat the command to resume\n", name,
+                 out.message, figure.empty() ? "no figure was drawn; " : "");
+      return;
+    case FigureStatus::StoreFailed:
+      fmt::print(stderr, "granchain: error: {}{}; repeat the command to resume\n", name, out.message);
+      return;
+    case FigureStatus::Unphysical:
+      fmt::print(stderr, "granchain: error: {}the simulation became unphysical: {}\n", name, out.message);
+      return;
+    case FigureStatus::NothingStored:
+    case FigureStatus::OutputFailed:
+    case FigureStatus::Failed:
+      fmt::print(stderr, "granchain: error: {}{}\n", name, out.message);
+      return;
+  }
+}
 
 // threads_text: the --threads value as given, or null when the flag was not given.
 int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::string* threads_text, const std::string* time_limit_text) {
@@ -86,11 +127,34 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
   }
-  if (o.print_sweeps) return print_sweeps(chosen, o);
+  if (o.print_sweeps) {
+    fmt::print("{}", sweep_commands(chosen, o));
+    return kExitOk;
+  }
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   set_parallelism(o.threads, 1);
   announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
-  return run_figures(chosen, o);
+  int code = kExitOk;
+  const ReproductionOutcome result = run_figures(chosen, o, [&code](const FigureReport& r) {
+    const FigureOutcome& out = r.outcome;
+    report_failure(r.figure->name, out);
+    // A time limit stops the figures; an earlier failure's code wins over it.
+    code = out.status == FigureStatus::TimeLimit && code != kExitOk ? code : std::max(code, exit_code(out.status));
+    if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
+    if (!r.report_path.empty()) fmt::print("report: {}\n", r.report_path);
+  });
+  if (result.computing.status != FigureStatus::Done) {
+    report_failure("", result.computing);
+    fmt::print("runs:   {}\n", o.db);
+    return exit_code(result.computing.status);
+  }
+  if (!result.group_report.empty()) fmt::print("report: {}\n", result.group_report);
+  if (!result.group_report_error.empty()) {
+    fmt::print(stderr, "granchain: error: {}\n", result.group_report_error);
+    code = std::max<int>(code, kExitStoreFailed);
+  }
+  fmt::print("runs:   {}\n", o.db);
+  return code;
 }
 
 }  // namespace

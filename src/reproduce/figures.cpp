@@ -153,7 +153,7 @@ void write_output(const std::string& path, const std::string& text) { write_file
 
 void draw(const std::string& script, const std::vector<std::string>& args) {
   const std::string problem = run_plot_script(script, args);
-  if (!problem.empty()) throw std::runtime_error(problem);
+  if (!problem.empty()) throw OutputError(problem);
 }
 
 std::string draw_figure(const ReproduceFlags& o, const std::string& name, const nlohmann::json& data, const std::string& script) {

@@ -47,15 +47,22 @@ struct NothingStored : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// What one figure produced: its exit code (kExitOk, or kExitUnphysical when points failed and
-// were left out) and its section of the Markdown report.
+// How a figure ended. Done and PointsFailed drew it (points that turned unphysical were left
+// out); the others drew nothing: NothingStored (--stored-only found none of its runs), TimeLimit
+// (--time-limit left runs for a repeat), StoreFailed, Unphysical (a trajectory that had to
+// succeed), OutputFailed (a file or plot could not be written), Failed (its analysis could not
+// be done). The command line turns these into messages and exit codes.
+enum class FigureStatus { Done, PointsFailed, NothingStored, TimeLimit, StoreFailed, Unphysical, OutputFailed, Failed };
+
+// What one figure produced: how it ended and its section of the Markdown report.
 struct FigureOutcome {
-  int exit_code = 0;
+  FigureStatus status = FigureStatus::Done;
   std::string markdown;
   std::string drawn;  // the figure files, for the command's output ("out/fig6.png (and .pdf)")
   // The stored CPU times of the driven-column runs it analyses (wall times for runs stored without
   // one), summed over whichever sittings ran them; negative for a figure without such runs.
   double run_seconds = -1.0;
+  std::string message;  // why it ended as it did, for a status other than Done
 };
 
 // One block of a figure's driven-column grid, as texts of `granchain sweep` (lists, ranges).
@@ -103,13 +110,13 @@ StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint
 
 // The path of an output named `name` in --out.
 std::string output_path(const ReproduceFlags& o, const std::string& name);
-// Writes a whole output file (atomically); throws std::runtime_error naming it.
+// Writes a whole output file (atomically); throws OutputError naming it.
 void write_output(const std::string& path, const std::string& text);
-// Runs plots/<script> with these arguments; throws std::runtime_error saying what went wrong.
+// Runs plots/<script> with these arguments; throws OutputError saying what went wrong.
 void draw(const std::string& script, const std::vector<std::string>& args);
 
 // Writes out/<name>.json and draws it with plots/<script> into out/<name>.png and .pdf; returns
-// "out/<name>.png (and .pdf)". Throws std::runtime_error.
+// "out/<name>.png (and .pdf)". Throws OutputError.
 std::string draw_figure(const ReproduceFlags& o, const std::string& name, const nlohmann::json& data, const std::string& script);
 
 // The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
@@ -127,7 +134,7 @@ std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o);          // l
 std::string fine_structure_report(const std::string& db, const std::vector<SweepPoint>& points);
 
 // The figures. Each runs what it needs, draws into --out and returns its report section; throws
-// StoreError (store), UnphysicalStateError (a trajectory that must not fail) or std::runtime_error
+// StoreError (store), UnphysicalStateError (a trajectory that must not fail) or OutputError
 // (an output or plot that could not be written).
 FigureOutcome reproduce_model_sketch(const ReproduceFlags& o);        // fig1 (1dmodel)
 FigureOutcome reproduce_three_body(const ReproduceFlags& o);          // fig2 (threebodycollapse)

@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "reproduce/figures.hpp"
-#include "config/exit_codes.hpp"
 #include "config/value_list.hpp"
 #include "simulation/collapse_run.hpp"
 #include "store/results_store.hpp"
@@ -61,7 +60,7 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
     plot["series"].push_back(js);
   }
   const std::string drawn = draw_figure(o, "fig10", plot, "ntot.py");
-  FigureOutcome out{kExitOk, "", drawn};
+  FigureOutcome out{FigureStatus::Done, "", drawn};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig10 --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
                              "dv0 = 0.1, stop rule `ends`), exact engine; the same launches at every k, so slopes are paired per launch. "
                              "Figure: `fig10.png` (and .pdf).\n\n",

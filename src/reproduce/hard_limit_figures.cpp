@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/asymptotic_forms.hpp"
-#include "config/exit_codes.hpp"
 #include "config/value_list.hpp"
 #include "reproduce/figures.hpp"
 #include "simulation/collapse_run.hpp"
@@ -316,7 +315,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
     plot["series"].push_back(js);
   }
   if (o.stored_only && drawn == 0) throw NothingStored(fmt::format("no free-space series of limit-free has two counts in {}", o.db));
-  FigureOutcome out{kExitOk, md, draw_figure(o, "limit-free", plot, "limit_exponents.py")};
+  FigureOutcome out{FigureStatus::Done, md, draw_figure(o, "limit-free", plot, "limit_exponents.py")};
   return out;
 }
 
@@ -363,7 +362,7 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
       md += "\n" + log_polynomials_text(k, y, C, k_fit, js);
       plot["series"].push_back(js);
     }
-  FigureOutcome out{failed.empty() ? kExitOk : kExitUnphysical, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
+  FigureOutcome out{failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
                     a.run_seconds};
   for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
   out.markdown += excluded_markdown(a);

@@ -20,7 +20,6 @@
 #include "analysis/asymptotic_forms.hpp"
 #include "analysis/blocking.hpp"
 #include "analysis/collision_sequence.hpp"
-#include "config/exit_codes.hpp"
 #include "reproduce/figures.hpp"
 #include "simulation/collapse_run.hpp"
 #include "theory/collapse_theory.hpp"
@@ -395,7 +394,7 @@ FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o) {
     plot["soft"].push_back(s.json);
     md += h.markdown + s.markdown;
   }
-  return {kExitOk, md, draw_figure(o, "intervals", plot, "intervals.py")};
+  return {FigureStatus::Done, md, draw_figure(o, "intervals", plot, "intervals.py")};
 }
 
 }  // namespace granchain

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include "reproduce/figures.hpp"
-#include "config/exit_codes.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {
@@ -104,7 +103,7 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   const std::string problem = draw_ncoll_panels(a, prefix, "--out");
   if (!problem.empty()) throw std::runtime_error(problem);
   FigureOutcome out;
-  out.exit_code = failures.empty() ? kExitOk : kExitUnphysical;
+  out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   out.run_seconds = a.run_seconds;
   out.drawn = fmt::format("{}_N{}_T01_exact.png (and .pdf)", prefix, fig5 ? "25" : "<N>");
   out.markdown = fmt::format(
@@ -154,7 +153,7 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
     }
   const std::string drawn = draw_figure(o, "fig8", plot, "partial_cond.py");
   FigureOutcome out;
-  out.exit_code = failures.empty() ? kExitOk : kExitUnphysical;
+  out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   out.run_seconds = a.run_seconds;
   out.drawn = drawn;
   out.markdown = fmt::format(

@@ -11,7 +11,7 @@
 #include <chrono>
 #include <set>
 
-#include "config/exit_codes.hpp"
+#include "store/output_file.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"
 #include "sweep/sweep_progress.hpp"
@@ -58,10 +58,16 @@ std::string report_name(const std::string& figure) { return figure == "fig5" ? "
 
 namespace {
 
-// Runs one figure; on failure prints one line and returns the exit code in the outcome.
+// Runs one figure and writes its report; a typed failure ends it with that status and message.
 FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
   o.figure = f.name;
   o.partial = std::make_shared<std::vector<std::string>>();
+  const auto failed = [](FigureStatus status, const std::exception& e) {
+    FigureOutcome out;
+    out.status = status;
+    out.message = e.what();
+    return out;
+  };
   try {
     FigureOutcome out = f.run(o);
     std::string partial;
@@ -73,28 +79,25 @@ FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
     write_output(output_path(o, report_name(f.name)), out.markdown);
     return out;
   } catch (const NothingStored& e) {
-    fmt::print(stderr, "granchain: error: {}: {}\n", f.name, e.what());
-    return {kExitBadInput, "", ""};
+    return failed(FigureStatus::NothingStored, e);
   } catch (const TimeLimitReached& e) {
-    fmt::print(stderr, "granchain: {}: --time-limit: {}; every finished run is stored, repeat the command to resume\n", f.name,
-               e.what());
-    return {kExitTimeLimit, "", ""};
+    return failed(FigureStatus::TimeLimit, e);
   } catch (const StoreError& e) {
-    fmt::print(stderr, "granchain: error: {}: {}; repeat the command to resume\n", f.name, e.what());
-    return {kExitStoreFailed, "", ""};
+    return failed(FigureStatus::StoreFailed, e);
   } catch (const UnphysicalStateError& e) {
-    fmt::print(stderr, "granchain: error: {}: the simulation became unphysical: {}\n", f.name, e.what());
-    return {kExitUnphysical, "", ""};
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "granchain: error: {}: {}\n", f.name, e.what());
-    return {kExitStoreFailed, "", ""};
+    return failed(FigureStatus::Unphysical, e);
+  } catch (const OutputError& e) {
+    return failed(FigureStatus::OutputFailed, e);
+  } catch (const std::exception& e) {  // its analysis could not be done (too few points for a fit, ...)
+    return failed(FigureStatus::Failed, e);
   }
 }
 
 }  // namespace
 
 // The sweeps behind the chosen figures as `granchain sweep` commands, each grid block once.
-int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& flags) {
+std::string sweep_commands(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& flags) {
+  std::string text;
   std::set<std::string> seen;
   std::vector<GridBlock> blocks;
   ReproduceFlags o = flags;
@@ -109,26 +112,27 @@ int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceF
       double seconds = 0.0;
       const std::vector<SweepPoint> points = grid_points({b});
       for (const SweepPoint& p : points) seconds += p.cost;
-      fmt::print("# {} points, predicted {:.2g} CPU-hours (sweep/cost_model.hpp)\n{}\n", points.size(), seconds / 3600, line);
+      text += fmt::format("# {} points, predicted {:.2g} CPU-hours (sweep/cost_model.hpp)\n{}\n", points.size(), seconds / 3600, line);
     }
   }
   double total = 0.0;
   const std::vector<SweepPoint> all = blocks.empty() ? std::vector<SweepPoint>{} : grid_points(blocks);
   for (const SweepPoint& p : all) total += p.cost;
-  fmt::print("# {} distinct points, predicted {:.2g} CPU-hours in all; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
+  text += fmt::format("# {} distinct points, predicted {:.2g} CPU-hours in all; add --db STORE (and mpirun -np P, or --shard i/n and granchain merge), then: "
              "granchain reproduce --figure {} --preset {} --db STORE\n",
              all.size(), total / 3600, flags.figure, flags.preset);
-  return kExitOk;
+  return text;
 }
 
 
 namespace {
 
 // With --time-limit, every run and count the chosen figures need is computed before any figure is
-// drawn, so that the limit is spent on computing only: a repeat after exit 75 always stores what
-// the last one could not, never redraws finished figures in the time it needs. Returns kExitOk when
-// everything is stored, kExitTimeLimit when the limit came first.
-int compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+// drawn, so that the limit is spent on computing only: a repeat after a time limit always stores
+// what the last one could not, never redraws finished figures in the time it needs. Done when
+// everything is stored; TimeLimit when the limit came first; StoreFailed or Unphysical.
+FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+  FigureOutcome out;
   try {
     for (const FigureEntry* f : chosen)
       if (f->grid) {
@@ -143,43 +147,40 @@ int compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, con
         for (const CollapseSpec& spec : f->counts(fo)) stored_or_run_collapse(spec, fo, f->name);
       }
   } catch (const TimeLimitReached& e) {
-    fmt::print(stderr, "granchain: --time-limit: {}; every finished run is stored, no figure was drawn; repeat the command "
-                       "to resume\n", e.what());
-    fmt::print("runs:   {}\n", o.db);
-    return kExitTimeLimit;
+    out = {FigureStatus::TimeLimit, "", "", -1.0, e.what()};
   } catch (const StoreError& e) {
-    fmt::print(stderr, "granchain: error: {}; repeat the command to resume\n", e.what());
-    return kExitStoreFailed;
+    out = {FigureStatus::StoreFailed, "", "", -1.0, e.what()};
   } catch (const UnphysicalStateError& e) {
-    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}\n", e.what());
-    return kExitUnphysical;
+    out = {FigureStatus::Unphysical, "", "", -1.0, e.what()};
   }
-  return kExitOk;
+  return out;
 }
 
 }  // namespace
 
-int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
-  if (o.time_limit > 0 && !o.stored_only)
-    if (const int code = compute_within_time_limit(chosen, o); code != kExitOk) return code;
-  int code = kExitOk;
+ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o,
+                                const std::function<void(const FigureReport&)>& on_figure) {
+  ReproductionOutcome result;
+  if (o.time_limit > 0 && !o.stored_only) {
+    result.computing = compute_within_time_limit(chosen, o);
+    if (result.computing.status != FigureStatus::Done) return result;
+  }
   std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
       "| figure | label | result | wall time | its runs' CPU time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();
-    const FigureOutcome out = run_one(*f, o);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (out.exit_code == kExitTimeLimit) {  // the later figures wait for the repeat too; an earlier failure's code wins
-      fmt::print("runs:   {}\n", o.db);
-      return code != kExitOk ? code : kExitTimeLimit;
-    }
-    code = std::max(code, out.exit_code);
-    if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
-    if (!out.markdown.empty()) fmt::print("report: {}\n", output_path(o, report_name(f->name)));
+    FigureReport report{f, run_one(*f, o), "", 0.0};
+    report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const FigureOutcome& out = report.outcome;
+    if (!out.markdown.empty()) report.report_path = output_path(o, report_name(f->name));
+    result.figures.push_back(report);
+    if (on_figure) on_figure(report);
+    if (out.status == FigureStatus::TimeLimit) return result;  // the later figures wait for the repeat too
+    const bool drawn = out.status == FigureStatus::Done || out.status == FigureStatus::PointsFailed;
     all += fmt::format("| {} | {} | {} | {} | {} |\n", f->name, f->label,
-                       out.exit_code == kExitOk ? "done" : out.exit_code == kExitUnphysical ? "done, points failed" : "failed",
-                       format_duration(wall), out.run_seconds >= 0 ? format_duration(out.run_seconds) : "-");
+                       !drawn ? "failed" : out.status == FigureStatus::Done ? "done" : "done, points failed",
+                       format_duration(report.wall_seconds), out.run_seconds >= 0 ? format_duration(out.run_seconds) : "-");
     // One level down: the figure's title becomes a section of the whole report.
     if (!out.markdown.empty()) sections += "\n#" + out.markdown;
   }
@@ -193,14 +194,12 @@ int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFl
            "share runs (fig6, fig7, fig9 and Table 1's k_B T0 = 1; fig5 and fig8) count them in each.\n";
     try {
       write_output(output_path(o, report_name(o.figure)), all + sections);
-      fmt::print("report: {}\n", output_path(o, report_name(o.figure)));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "granchain: error: {}\n", e.what());
-      code = std::max<int>(code, kExitStoreFailed);
+      result.group_report = output_path(o, report_name(o.figure));
+    } catch (const OutputError& e) {
+      result.group_report_error = e.what();
     }
   }
-  fmt::print("runs:   {}\n", o.db);
-  return code;
+  return result;
 }
 
 }  // namespace granchain

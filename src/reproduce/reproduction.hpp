@@ -1,6 +1,7 @@
 #pragma once
 // The paper's figures and Table 1 as a list, and the reproduction of a chosen set of them: each
 // figure's runs, analysis, drawing and report (reproduce/*_figures.cpp), and the report of all.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,13 +32,31 @@ std::string figure_names();
 // report-beyond.md for the groups.
 std::string report_name(const std::string& figure);
 
-// Prints the sweeps behind the chosen figures as `granchain sweep` commands, each grid block once,
-// with their predicted CPU time; returns kExitOk.
-int print_sweeps(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o);
+// The sweeps behind the chosen figures as `granchain sweep` commands, each grid block once,
+// with their predicted CPU time, one per line.
+std::string sweep_commands(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o);
+
+// One figure as run_figures ran it: its outcome, the report it wrote ("" if none) and its wall time.
+struct FigureReport {
+  const FigureEntry* figure = nullptr;
+  FigureOutcome outcome;
+  std::string report_path;
+  double wall_seconds = 0;
+};
+
+struct ReproductionOutcome {
+  // With --time-limit, the computing before any figure: a status other than Done ended the
+  // command there (no figure drawn).
+  FigureOutcome computing;
+  std::vector<FigureReport> figures;  // in order; the last is TimeLimit when the limit stopped them
+  std::string group_report;           // report-all.md or report-beyond.md for a group, when written
+  std::string group_report_error;     // why it could not be written
+};
 
 // Runs the chosen figures in order (o validated, o.threads resolved): each writes its report into
-// o.out, prints where its figure and report are, and report-all.md joins them for --figure all.
-// Returns the worst exit code (kExitOk, kExitUnphysical when points failed, kExitStoreFailed).
-int run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o);
+// o.out and is handed to on_figure as it ends; a group's report joins them. Figures fail one by one
+// (their status says how); a time limit stops the rest.
+ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o,
+                                const std::function<void(const FigureReport&)>& on_figure = {});
 
 }  // namespace granchain

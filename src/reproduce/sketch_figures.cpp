@@ -7,7 +7,6 @@
 #include <map>
 
 #include "reproduce/figures.hpp"
-#include "config/exit_codes.hpp"
 #include "model/chain_parameters.hpp"
 #include "simulation/trajectory.hpp"
 #include "theory/collapse_theory.hpp"
@@ -44,7 +43,7 @@ FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
     floor_hits += e.kind == EventKind::FloorHit;
     contacts += e.kind == EventKind::ContactEnd;
   }
-  FigureOutcome out{kExitOk, "", prefix + ".png (and .pdf)"};
+  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)"};
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure fig1`. The paper's Fig. 1 is a schematic. Here: (a) a sketch of the slope flow and "
       "the line z perpendicular to the slope, (b) the model — N = 25 spheres of diameter d = 1 on a vertical line under gravity "
@@ -79,7 +78,7 @@ FigureOutcome reproduce_three_body(const ReproduceFlags& o) {
     ratios += fmt::format("{}{:.4f}", ratios.empty() ? "" : ", ", (t12[n] - t12[n - 1]) / (t12[n - 1] - t12[n - 2]));
   int ends = 0;
   for (const Event& e : tr.events) ends += e.kind == EventKind::ContactEnd;
-  FigureOutcome out{kExitOk, "", prefix + ".png (and .pdf)"};
+  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)"};
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure fig2`. The paper's Fig. 2 is a schematic. Here a simulated three-body collapse in free "
       "space: launch 0 of Sec. III.D (a = v0 = 1, dv0 = 0.1, seed 1), e = 0.065 < e_c(3) = {:.4f}, k = 1e14 (τ_c = {:.3g}), exact "

@@ -32,8 +32,8 @@ int write_all(int fd, const std::string& text) {
   return 0;
 }
 
-std::runtime_error write_error(const std::string& option, const std::string& path, int err) {
-  return std::runtime_error(fmt::format("{}: cannot write '{}': {}", option, path, std::strerror(err)));
+OutputError write_error(const std::string& option, const std::string& path, int err) {
+  return OutputError(fmt::format("{}: cannot write '{}': {}", option, path, std::strerror(err)));
 }
 
 }  // namespace
@@ -121,7 +121,7 @@ void write_file_atomically(const std::string& path, const std::string& text, con
 void write_standard_output(const std::string& text) {
   errno = 0;
   const bool ok = std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0;
-  if (!ok) throw std::runtime_error(fmt::format("cannot write standard output: {}", std::strerror(errno ? errno : EIO)));
+  if (!ok) throw OutputError(fmt::format("cannot write standard output: {}", std::strerror(errno ? errno : EIO)));
 }
 
 }  // namespace granchain

@@ -1,4 +1,5 @@
 #pragma once
+#include <stdexcept>
 // The files a command writes: checked before anything runs (creatable, not one of the command's
 // inputs), then written whole or not at all, every write and the final close checked.
 #include <string>
@@ -23,6 +24,12 @@ bool same_file(const std::string& a, const std::string& b);
 // "-" (standard output) is refused here: a caller that can write to standard output handles it first.
 void check_output_file(const std::string& path, const std::string& option = "--json", const std::vector<NamedPath>& inputs = {});
 
+// An output (a file, standard output, a figure) that could not be written.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Every output of a command against every input and every other output (check_output_file for
 // each, in order), before anything is written. Empty paths are skipped.
 void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
@@ -31,7 +38,7 @@ void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<Name
 // the target (every write, the flush to disk and the close checked) and throws on failure;
 // commit() renames it into place. A target that exists and is not a regular file (a device, a
 // FIFO, /dev/stdout) cannot be replaced: it is written directly by commit(). The destructor
-// removes a temporary file that was not committed. Errors: std::runtime_error
+// removes a temporary file that was not committed. Errors: OutputError
 // "<option>: cannot write '<path>': <reason>".
 class PendingFile {
  public:
@@ -49,7 +56,7 @@ class PendingFile {
 // PendingFile(path, text, option).commit().
 void write_file_atomically(const std::string& path, const std::string& text, const std::string& option = "--json");
 
-// Writes text to standard output and flushes it; throws std::runtime_error
+// Writes text to standard output and flushes it; throws OutputError
 // "cannot write standard output: <reason>".
 void write_standard_output(const std::string& text);
 
