@@ -9,7 +9,7 @@
 
 #include "analysis/fine_structure.hpp"
 #include "reproduce/figures.hpp"
-#include "store/store_export.hpp"
+#include "store/stored_rows.hpp"
 #include "theory/collapse_theory.hpp"
 
 namespace granchain {
@@ -27,12 +27,11 @@ SmallNCurves read_curves(const std::string& db, const std::vector<SweepPoint>& p
   ExportSelection sel;
   for (const SweepPoint& p : points) sel.point_keys.push_back(p.key);
   std::map<int, std::map<double, std::map<int, std::map<double, DataPoint>>>> acc;  // N, k, replica, e
-  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
-    if (row.at("n_coll_err").is_null() || row.at("k").is_null()) continue;
-    const double e = row.at("e").get<double>(), err = row.at("n_coll_err").get<double>();
+  for (const StoredRun& row : read_runs(db, sel)) {
+    if (std::isnan(row.n_coll_err) || !std::isfinite(row.params.k)) continue;
+    const double e = row.params.e, err = row.n_coll_err;
     if (!(err > 0)) continue;
-    const int replica = row.at("replica").is_null() ? 0 : row.at("replica").get<int>();
-    acc[row.at("N").get<int>()][row.at("k").get<double>()][replica][e] = {e, row.at("n_coll").get<double>(), err};
+    acc[row.params.N][row.params.k][row.replica][e] = {e, row.n_coll, err};
   }
   SmallNCurves out;
   for (const auto& [N, by_k] : acc)

@@ -11,6 +11,7 @@
 #include "simulation/run_key.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
+#include "store/stored_rows.hpp"
 #include "theory/equilibrium_column.hpp"
 
 namespace granchain {
@@ -22,31 +23,25 @@ namespace {
 // column's sigma_0,i (theory/equilibrium_column) at the same N, k, T0.
 std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel,
                                                                           const std::set<std::int64_t>& left_out) {
-  sel.table = ExportTable::Profiles;
   // (engine, N, T0, e) -> k -> particle -> sums for K and sigma: w, w K, w sigma (weights 1/err^2)
   std::map<FamilyKey, std::map<double, std::map<double, std::map<int, std::array<double, 4>>>>> acc;
   std::map<std::tuple<int, double, double>, ChainParameters> params;
-  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
-    if (row.at("setup") != "driven_column" || row.at("k").is_null() || row.at("K_err").is_null() || row.at("z_std_err").is_null() ||
-        left_out.count(row.at("run_id").get<std::int64_t>()))
+  for (const StoredProfile& row : read_profiles(db, sel)) {
+    // Hard spheres (no finite k) have no place on the k axis; profiles without errors carry no weight.
+    if (row.setup != "driven_column" || !std::isfinite(row.params.k) || std::isnan(row.K_err) || std::isnan(row.z_std_err) ||
+        left_out.count(row.run_id))
       continue;
-    const double kerr = row.at("K_err").get<double>(), serr = row.at("z_std_err").get<double>();
+    const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{row.at("engine").get<std::string>(), row.at("N").get<int>(), row.at("T0").get<double>()};
-    const double e = row.at("e").get<double>(), k = row.at("k").get<double>();
-    auto& a = acc[key][e][k][row.at("i").get<int>()];
+    const FamilyKey key{engine_name(row.engine), row.params.N, row.params.kT0};
+    const double e = row.params.e, k = row.params.k;
+    auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);
-    a[1] += row.at("K_mean").get<double>() / (kerr * kerr);
+    a[1] += row.K_mean / (kerr * kerr);
     a[2] += 1.0 / (serr * serr);
-    a[3] += row.at("z_std").get<double>() / (serr * serr);
-    ChainParameters p;
-    p.N = std::get<1>(key);
-    p.kT0 = std::get<2>(key);
-    p.k = k;
+    a[3] += row.z_std / (serr * serr);
+    ChainParameters p = row.params;
     p.e = 1.0;
-    p.m = row.at("m").get<double>();
-    p.d = row.at("d").get<double>();
-    p.g = row.at("g").get<double>();
     params[{p.N, p.kT0, k}] = p;
   }
   std::map<FamilyKey, std::map<double, Condensation>> out;
@@ -70,22 +65,13 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
   return out;
 }
 
-double number_or_nan(const nlohmann::json& x) { return x.is_number() ? x.get<double>() : std::nan(""); }
-
 // The trajectory a stored run followed (simulation/run_key.hpp), from its columns.
-std::string trajectory_of_row(const nlohmann::json& row) {
+std::string trajectory_of_row(const StoredRun& row) {
   RunSpec s;
-  s.engine.kind = stored_engine_kind(row.at("engine").get<std::string>());
-  s.params.N = row.at("N").get<int>();
-  s.params.e = row.at("e").get<double>();
-  s.params.k = number_or_nan(row.at("k"));
-  s.params.kT0 = row.at("T0").get<double>();
-  s.params.m = row.at("m").get<double>();
-  s.params.d = row.at("d").get<double>();
-  s.params.g = row.at("g").get<double>();
-  s.engine.dt_factor = number_or_nan(row.at("dt_factor"));
-  s.engine.hard.tc = row.contains("tc") ? number_or_nan(row.at("tc")) : std::nan("");
-  s.seed = static_cast<std::uint64_t>(row.at("seed").get<std::int64_t>());
+  s.engine = row.engine;
+  s.params = row.params;
+  if (!std::isfinite(s.params.k)) s.params.k = std::nan("");  // hard spheres: no k in the key
+  s.seed = row.seed;
   return trajectory_key(s);
 }
 
@@ -151,24 +137,22 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   StoreAnalysis a;
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
-  for (const auto& row : nlohmann::json::parse(export_results(db, sel, ExportFormat::Json))) {
-    if (row.at("setup") != "driven_column") continue;
+  for (const StoredRun& row : read_runs(db, sel)) {
+    if (row.setup != "driven_column") continue;
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
-    if (row.contains("cpu_seconds") && row.at("cpu_seconds").is_number()) a.run_seconds += row.at("cpu_seconds").get<double>();
-    else if (row.contains("wall_seconds") && row.at("wall_seconds").is_number()) a.run_seconds += row.at("wall_seconds").get<double>();
-    const bool stationary = !row.contains("stationary") || row.at("stationary").is_null() || row.at("stationary").get<int>() != 0;
+    a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
     analysis::NcollRun run;
-    run.engine = row.at("engine").get<std::string>();
-    run.N = row.at("N").get<int>();
-    run.kT0 = row.at("T0").get<double>();
-    run.e = row.at("e").get<double>();
-    run.k = number_or_nan(row.at("k"));
-    run.n_coll = number_or_nan(row.at("n_coll"));
-    run.n_coll_err = number_or_nan(row.at("n_coll_err"));
-    run.stationary = stationary;
-    run.run_id = row.at("id").get<std::int64_t>();
+    run.engine = engine_name(row.engine.kind);
+    run.N = row.params.N;
+    run.kT0 = row.params.kT0;
+    run.e = row.params.e;
+    run.k = std::isfinite(row.params.k) ? row.params.k : std::nan("");  // hard spheres: no point on the k axis
+    run.n_coll = row.n_coll;
+    run.n_coll_err = row.n_coll_err;
+    run.stationary = row.stationary.value_or(true);  // runs stored before the check count as stationary
+    run.run_id = row.id;
     run.trajectory = trajectory_of_row(row);
-    run.T = row.at("T").get<double>();
+    run.T = row.T;
     runs.push_back(run);
   }
   a.runs = runs.size();

@@ -84,14 +84,21 @@ bool next_row(SqlStatement& rows, const ExportSelection& sel) {
 
 }  // namespace
 
-std::string export_results(const std::string& db_path, const ExportSelection& sel, ExportFormat format) {
+struct SelectedRows::Impl {
+  std::unique_ptr<sqlite3, int (*)(sqlite3*)> db{nullptr, sqlite3_close};
+  std::unique_ptr<SqlStatement> rows;
+  ExportSelection sel;
+};
+
+SelectedRows::SelectedRows(const std::string& db_path, const ExportSelection& sel) : impl_(std::make_unique<Impl>()) {
+  impl_->sel = sel;
   ResultsStore::preflight(db_path, ResultsStore::Access::ReadOnly);
   sqlite3* db = nullptr;
   if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     sqlite3_close(db);
     throw StoreError(fmt::format("--db: cannot open '{}'", db_path));
   }
-  std::unique_ptr<sqlite3, int (*)(sqlite3*)> guard(db, sqlite3_close);
+  impl_->db.reset(db);
   sqlite3_busy_timeout(db, 60000);
 
   std::string where;
@@ -131,11 +138,29 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
                                  "filters against the columns of this table", msg));
   }
   sqlite3_finalize(probe);
-  SqlStatement rows(db, sql.c_str());
+  impl_->rows = std::make_unique<SqlStatement>(db, sql.c_str());
+  SqlStatement& rows = *impl_->rows;
   int b = 1;
   for (double x : numbers) rows.bind(b++, x);
   for (const auto& e : sel.engines) rows.bind(b++, e);
   for (const auto& key : sel.point_keys) rows.bind(b++, key);
+}
+
+SelectedRows::~SelectedRows() = default;
+
+bool SelectedRows::next() { return next_row(*impl_->rows, impl_->sel); }
+
+SqlStatement& SelectedRows::row() { return *impl_->rows; }
+
+int SelectedRows::column(const std::string& name) {
+  for (int i = 0; i < impl_->rows->columns(); ++i)
+    if (name == impl_->rows->column_name(i)) return i;
+  throw StoreError(fmt::format("results store: the selection has no column '{}'", name));
+}
+
+std::string export_results(const std::string& db_path, const ExportSelection& sel, ExportFormat format) {
+  SelectedRows selected(db_path, sel);
+  SqlStatement& rows = selected.row();
 
   std::vector<int> shown;  // every column but the raw JSON provenance
   for (int i = 0; i < rows.columns(); ++i)
@@ -144,14 +169,14 @@ std::string export_results(const std::string& db_path, const ExportSelection& se
   if (format == ExportFormat::Csv) {
     for (std::size_t j = 0; j < shown.size(); ++j) out += std::string(j ? "," : "") + rows.column_name(shown[j]);
     out += "\n";
-    while (next_row(rows, sel)) {
+    while (selected.next()) {
       for (std::size_t j = 0; j < shown.size(); ++j) out += (j ? "," : "") + csv_field(rows, shown[j]);
       out += "\n";
     }
     return out;
   }
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
-  while (next_row(rows, sel)) {
+  while (selected.next()) {
     nlohmann::ordered_json obj;
     for (int i : shown) obj[rows.column_name(i)] = json_field(rows, i);
     all.push_back(std::move(obj));

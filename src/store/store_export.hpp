@@ -1,6 +1,7 @@
 #pragma once
 // Stored results as CSV or JSON, with every parameter beside every number.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,26 @@ struct ExportSelection {
   // Runs and profiles only: non-empty keeps just the runs stored under these point keys
   // (simulation/run_key.hpp), so an analysis sees exactly the points of its own grid.
   std::vector<std::string> point_keys;
+};
+
+class SqlStatement;
+
+// The selected rows of one table, read one at a time (the store opened read-only; a bad --where
+// throws StoreError naming SQLite's complaint, here or at next()). For typed readers
+// (store/stored_rows.hpp) and the export below.
+class SelectedRows {
+ public:
+  SelectedRows(const std::string& db_path, const ExportSelection& selection);
+  ~SelectedRows();
+  SelectedRows(const SelectedRows&) = delete;
+  SelectedRows& operator=(const SelectedRows&) = delete;
+  bool next();
+  SqlStatement& row();
+  int column(const std::string& name);  // the index of a column of the selection
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // The selected rows as text. The store is opened read-only. Throws StoreError (a bad --where
