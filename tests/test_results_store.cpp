@@ -8,6 +8,7 @@
 #include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 #include "store/results_store.hpp"
+#include "store/store_export.hpp"
 #include "store/store_merge.hpp"
 #include "temp_dir.hpp"
 
@@ -131,7 +132,45 @@ TEST(ResultsStore, ColumnsHoldStepTcAndBins) {
   EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE engine = 'hard' AND dt IS NULL"), 1.0);
   EXPECT_EQ(query_double(db, "SELECT tc FROM runs WHERE engine = 'hard'"), 1e-6);
   EXPECT_EQ(query_double(db, "SELECT min(bins) FROM runs"), 256.0);
-  EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), 2.0);
+  EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), static_cast<double>(kStoreSchemaVersion));
+}
+
+// The window's verdict and the CPU time are columns, equal to what each run's JSON says; a store of
+// schema version 2 (which keeps them only in the JSON) is read as it is and gains them when opened
+// for writing.
+TEST(ResultsStore, VerdictAndCpuTimeAreColumnsAndVersionTwoStoresGainThem) {
+  TempDir dir;
+  const std::string path = (dir.path / "v.db").string();
+  {
+    ResultsStore store(path);
+    RunSpec s;
+    s.params.N = 3;
+    s.T = 2;
+    s.transient = 0.5;
+    const RunResult r = run_driven_column(s);
+    store.insert_run(r);
+    sqlite3* db = store.handle();
+    EXPECT_EQ(query_double(db, "SELECT stationary FROM runs"), r.stationary() ? 1.0 : 0.0);
+    EXPECT_EQ(query_double(db, "SELECT cpu_seconds FROM runs"), r.cpu_seconds);
+    EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE stationary = json_extract(result_json, '$.stationarity.stationary') "
+                               "AND cpu_seconds = json_extract(result_json, '$.cost.cpu_seconds')"), 1.0);
+    // Back to version 2: the columns dropped, the version set.
+    ASSERT_EQ(sqlite3_exec(db, "ALTER TABLE runs DROP COLUMN stationary; ALTER TABLE runs DROP COLUMN cpu_seconds; "
+                               "UPDATE meta SET value = '2' WHERE key = 'schema_version'", nullptr, nullptr, nullptr), SQLITE_OK);
+  }
+  ResultsStore::preflight(path, ResultsStore::Access::ReadOnly);
+  {
+    ResultsStore reader(path, ResultsStore::Access::ReadOnly);  // read as it is
+    EXPECT_EQ(reader.point_keys().size(), 1u);
+  }
+  const std::string exported = export_results(path, ExportSelection{}, ExportFormat::Csv);
+  ResultsStore store(path);
+  sqlite3* db = store.handle();
+  EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), 3.0);
+  EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE stationary = json_extract(result_json, '$.stationarity.stationary') "
+                             "AND cpu_seconds = json_extract(result_json, '$.cost.cpu_seconds')"), 1.0);
+  // The export is the same before and after: the verdict and the CPU time last, from the JSON or the columns.
+  EXPECT_EQ(export_results(path, ExportSelection{}, ExportFormat::Csv), exported);
 }
 
 // A store of schema version 1 (tests/data/store_version_1.db: exact, hard with tc = 1e-6 and
@@ -147,7 +186,7 @@ TEST(ResultsStore, VersionOneStoreIsUpgradedWhenOpenedForWriting) {
   {
     ResultsStore store(path);
     sqlite3* db = store.handle();
-    EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), 2.0);
+    EXPECT_EQ(query_double(db, "SELECT value FROM meta WHERE key = 'schema_version'"), static_cast<double>(kStoreSchemaVersion));
     EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs"), 3.0);
     EXPECT_EQ(query_double(db, "SELECT count(*) FROM profiles"), 9.0);
     EXPECT_EQ(query_double(db, "SELECT count(*) FROM runs WHERE engine IN ('exact', 'hard') AND dt IS NULL"), 2.0);

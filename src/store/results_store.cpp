@@ -165,12 +165,12 @@ ResultsStore::ResultsStore(const std::string& path, Access access) : path_(path)
     if (hot) throw StoreError(interrupted_write_message(path, "--db"));
     throw;
   }
-  if (version != kStoreSchemaVersion) {
+  if (version < 2) {
     sqlite3_close(db_);
     db_ = nullptr;
     throw StoreError(fmt::format("--db: '{}' has an older store schema; it is upgraded by the first command that writes it "
-                                 "(reading it read-only needs version {})",
-                                 path, kStoreSchemaVersion));
+                                 "(reading it read-only needs version 2 or later)",
+                                 path));
   }
 }
 
@@ -198,6 +198,7 @@ void ResultsStore::open_read_write() {
   try {
     exec(schema_sql().c_str());
     if (schema_version() == 1) migrate_from_version_1();
+    if (schema_version() == 2) migrate_from_version_2();
     exec("COMMIT");
     exec("PRAGMA foreign_keys = ON");
   } catch (...) {
@@ -216,10 +217,11 @@ int ResultsStore::schema_version() {
   return st.row() ? std::stoi(st.column_text(0)) : 0;
 }
 
-// Version 1 -> 2, in the caller's transaction: runs gains tc and bins, and dt may be NULL. SQLite
-// cannot drop a NOT NULL constraint in place, so the table is rebuilt (create, copy, drop, rename)
-// and its index made again; profiles and run_points keep their run ids. The rows are then given
-// their version-2 values (kVersion1RunsToVersion2).
+// Version 1 -> 3, in the caller's transaction: runs gains tc and bins, dt may be NULL, and
+// stationary and cpu_seconds are added. SQLite cannot drop a NOT NULL constraint in place, so the
+// table is rebuilt (create, copy, drop, rename) and its index made again; profiles and run_points
+// keep their run ids. The rows are then given their later values (kVersion1RunsToVersion2,
+// kRunsVerdictsFromJson).
 void ResultsStore::migrate_from_version_1() {
   // SQLite's order for a rebuild (create new, copy, drop old, rename new), with foreign keys off:
   // renaming the old table instead would rewrite the profiles' reference to follow it.
@@ -237,7 +239,17 @@ void ResultsStore::migrate_from_version_1() {
   exec("ALTER TABLE runs_version_2 RENAME TO runs");
   exec("CREATE INDEX runs_by_point ON runs(setup, N, e, k, T0)");
   exec(kVersion1RunsToVersion2);
-  exec("UPDATE meta SET value = '2' WHERE key = 'schema_version'");
+  exec(kRunsVerdictsFromJson);
+  exec(fmt::format("UPDATE meta SET value = '{}' WHERE key = 'schema_version'", kStoreSchemaVersion).c_str());
+}
+
+// Version 2 -> 3, in the caller's transaction: runs gains stationary and cpu_seconds (nullable
+// columns, added in place), filled from each run's JSON.
+void ResultsStore::migrate_from_version_2() {
+  exec("ALTER TABLE runs ADD COLUMN stationary INTEGER");
+  exec("ALTER TABLE runs ADD COLUMN cpu_seconds REAL");
+  exec(kRunsVerdictsFromJson);
+  exec("UPDATE meta SET value = '3' WHERE key = 'schema_version'");
 }
 
 void ResultsStore::exec(const char* sql) {
@@ -337,8 +349,8 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     SqlStatement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
         T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
         n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
-        particle_collisions, floor_hits, steps, events, wall_seconds, result_json, tc, bins)
-        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
+        particle_collisions, floor_hits, steps, events, wall_seconds, result_json, tc, bins, stationary, cpu_seconds)
+        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
     const RunSpec& s = r.spec;
     int c = 1;
     run.bind(c++, utc_now());
@@ -379,6 +391,8 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     if (engine_info(s.engine.kind).hard_spheres) run.bind(c++, s.engine.hard.tc);
     else run.bind_null(c++);  // the TC time is the hard engine's
     run.bind(c++, static_cast<std::int64_t>(s.bins));
+    run.bind(c++, static_cast<std::int64_t>(r.stationary() ? 1 : 0));
+    run.bind(c++, r.cpu_seconds);  // NaN (not measured) is stored as NULL
     run.run();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
 

@@ -25,9 +25,11 @@ class StoreError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Version 2: runs has tc and bins, and dt NULL for event-driven engines. A version-1 store is
-// upgraded when it is opened for writing; readers read both.
-inline constexpr int kStoreSchemaVersion = 2;
+// Version 2: runs has tc and bins, and dt NULL for event-driven engines. Version 3: runs has
+// stationary (the window's halves check, 1 or 0) and cpu_seconds (the run's thread CPU time),
+// NULL for runs stored before they were recorded. An older store is upgraded when it is opened
+// for writing; readers read every version.
+inline constexpr int kStoreSchemaVersion = 3;
 
 // The columns of collapse_runs that define a collapse count, in the table's order; two rows with
 // equal values here hold the same count (ResultsStore::insert_collapse, merge).
@@ -45,6 +47,12 @@ inline constexpr const char* kVersion1RunsToVersion2 =
     "UPDATE runs SET dt = NULL WHERE dt = 0;"
     "UPDATE runs SET bins = json_extract(result_json, '$.parameters.bins') WHERE bins IS NULL;"
     "UPDATE runs SET tc = json_extract(result_json, '$.parameters.tc') WHERE tc IS NULL AND engine = 'hard';";
+
+// The version-3 columns of runs written before them, from each run's JSON (NULL where the JSON
+// has none). Idempotent; for the upgrade of a store and for runs merged from an older source.
+inline constexpr const char* kRunsVerdictsFromJson =
+    "UPDATE runs SET stationary = json_extract(result_json, '$.stationarity.stationary') WHERE stationary IS NULL;"
+    "UPDATE runs SET cpu_seconds = json_extract(result_json, '$.cost.cpu_seconds') WHERE cpu_seconds IS NULL;";
 
 class ResultsStore {
  public:
@@ -64,8 +72,9 @@ class ResultsStore {
   static std::string interrupted_write_message(const std::string& path, const std::string& option = "--db");
 
   explicit ResultsStore(const std::string& path);  // opens or creates
-  // Access::ReadOnly: opens an existing store of the current schema for reading only (a version-1
-  // store is refused: the first command that writes it upgrades it); writing through it fails.
+  // Access::ReadOnly: opens an existing store of schema version 2 or later for reading only (a
+  // version-1 store is refused: the first command that writes it upgrades it); writing through it
+  // fails. Its methods read what every version from 2 on holds.
   ResultsStore(const std::string& path, Access access);
   ~ResultsStore();
   ResultsStore(const ResultsStore&) = delete;
@@ -118,6 +127,7 @@ class ResultsStore {
   void exec(const char* sql);
   int schema_version();
   void migrate_from_version_1();
+  void migrate_from_version_2();
   std::int64_t append_run(const RunResult& r);  // inside a transaction
   // Runs write() between BEGIN IMMEDIATE and COMMIT, rolling back if it throws; returns its id.
   std::int64_t in_transaction(const std::function<std::int64_t()>& write);

@@ -11,15 +11,29 @@ namespace granchain {
 
 namespace {
 
-const char* source_sql(ExportTable t) {
+// The runs with their points; stationary (the window's verdict, 1 or 0) and cpu_seconds (the
+// run's thread CPU time) come last, NULL for runs stored before they were recorded. A store older
+// than version 3 keeps them only in each run's JSON.
+std::string runs_sql(sqlite3* db) {
+  std::string columns;
+  bool has_verdicts = false;
+  SqlStatement info(db, "SELECT name FROM pragma_table_info('runs')");
+  while (info.row()) {
+    const std::string c = info.column_text(0);
+    if (c == "stationary" || c == "cpu_seconds") has_verdicts = true;
+    else columns += (columns.empty() ? "r." : ", r.") + c;
+  }
+  return "SELECT " + columns + ", p.point_key, p.sweep_seed, p.replica, " +
+         (has_verdicts ? std::string("r.stationary, r.cpu_seconds ")
+                       : std::string("json_extract(r.result_json, '$.stationarity.stationary') AS stationary, "
+                                     "json_extract(r.result_json, '$.cost.cpu_seconds') AS cpu_seconds ")) +
+         "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
+}
+
+std::string source_sql(ExportTable t, sqlite3* db) {
   switch (t) {
     case ExportTable::Runs:
-      // stationary: the run's verdict on its window (1 or 0) from its JSON; NULL for runs stored
-      // before runs checked it. cpu_seconds: the CPU time of the run's thread, NULL likewise.
-      return "SELECT r.*, p.point_key, p.sweep_seed, p.replica, "
-             "json_extract(r.result_json, '$.stationarity.stationary') AS stationary, "
-             "json_extract(r.result_json, '$.cost.cpu_seconds') AS cpu_seconds "
-             "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
+      return runs_sql(db);
     case ExportTable::Profiles:
       return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
              "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err, p.point_key "
@@ -129,7 +143,7 @@ SelectedRows::SelectedRows(const std::string& db_path, const ExportSelection& se
     where += " AND point_key IN (" + marks + ")";
   }
   if (!sel.where.empty()) where += " AND (" + sel.where + ")";
-  const std::string sql = std::string("SELECT * FROM (") + source_sql(sel.table) + ") WHERE 1" + where + order_sql(sel.table);
+  const std::string sql = std::string("SELECT * FROM (") + source_sql(sel.table, db) + ") WHERE 1" + where + order_sql(sel.table);
   sqlite3_stmt* probe = nullptr;
   if (sqlite3_prepare_v2(db, sql.c_str(), -1, &probe, nullptr) != SQLITE_OK) {
     const std::string msg = sqlite3_errmsg(db);

@@ -259,6 +259,7 @@ MergeReport merge_into(const std::string& target, const std::vector<std::string>
       exec(src.db, "COMMIT");
     }
     exec(db, kVersion1RunsToVersion2);  // rows merged from a version-1 source
+    exec(db, kRunsVerdictsFromJson);    // rows merged from a source older than version 3
     exec(db, "COMMIT");
   } catch (...) {
     sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);

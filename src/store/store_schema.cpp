@@ -48,14 +48,16 @@ const char* const kRunsColumns = R"sql((
   wall_seconds REAL NOT NULL,
   result_json TEXT NOT NULL,
   tc REAL,
-  bins INTEGER
+  bins INTEGER,
+  stationary INTEGER,
+  cpu_seconds REAL
 ))sql";
 
 namespace {
 
 const char* kSchemaRest = R"sql(
 CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
-INSERT OR IGNORE INTO meta(key, value) VALUES('schema_version', '2');
+INSERT OR IGNORE INTO meta(key, value) VALUES('schema_version', '3');
 @RUNS@
 CREATE INDEX IF NOT EXISTS runs_by_point ON runs(setup, N, e, k, T0);
 CREATE TABLE IF NOT EXISTS profiles(
@@ -145,6 +147,7 @@ std::string missing_schema_part(sqlite3* db, int version) {
     while (missing.empty() && want.row()) {
       const std::string c = want.column_text(0);
       if (version == 1 && table == "runs" && (c == "tc" || c == "bins")) continue;
+      if (version <= 2 && table == "runs" && (c == "stationary" || c == "cpu_seconds")) continue;
       if (std::find(have.begin(), have.end(), c) == have.end()) missing = fmt::format("the column '{}' of the table '{}'", c, table);
     }
   }
