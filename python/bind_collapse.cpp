@@ -219,6 +219,8 @@ void bind_collapse(py::module_& m) {
         "Keyword arguments are the flags of `granchain collapse` with one e and one k (k left out for "
         "engine='hard'); db=PATH stores the count, record_collisions=True returns every collision. Bad input "
         "raises ValueError with the CLI's message.");
+  m.def("collapse_parameters", [] { return parameter_list(collapse_parameters()); },
+        "The parameters of collapse(), as run_parameters() gives run()'s (e and k: one value per call).");
   m.def("k_slope", &slope, py::arg("a"), py::arg("b"),
         "Slope of n_tot against log10 k between two collapse() results of the same launches at k1 and k2, paired "
         "over launches, with alpha = d ln n_tot / d ln k and, for N = 3 in free space below e_c(3), the theory's slopes.");

@@ -224,24 +224,10 @@ void bind_run(py::module_& m) {
         "(dt_factor for --dt-factor, sample_interval for --sample-interval), numbers or text; db=PATH stores the "
         "run, audit=True checks the exact engine, progress=callable(dict) is called about every 0.5 s. Bad input "
         "raises ValueError with the CLI's message.");
-  m.def("run_parameters", [] {
-    py::list out;
-    for (const Parameter& p : run_parameters()) {
-      if (!(p.uses & kUsePython)) continue;
-      py::dict d;
-      d["name"] = p.name;
-      d["help"] = p.help();
-      d["type"] = p.type_name();
-      d["unit"] = p.unit;
-      d["range"] = p.range;
-      d["default"] = p.fallback;
-      d["sweep_axis"] = p.sweep_axis;
-      d["store_column"] = p.store_column;
-      out.append(d);
-    }
-    return out;
-  }, "The parameters of run(): name (the CLI flag without --), help text, type, unit (in m, d, g), valid range, "
-     "default, whether a sweep takes a list of it, and the store column that keeps it.");
+  m.def("run_parameters", [] { return parameter_list(run_parameters()); },
+        "The parameters of run(): name (the CLI flag without --), help text, type, unit (in m, d, g), valid range, "
+        "default, the engines that take it (any, soft, hard, time-stepped), whether a sweep takes a list of it, and the "
+        "store column that keeps it.");
 }
 
 }  // namespace granchain::python

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "config/parameter.hpp"
 
@@ -23,6 +24,10 @@ std::string flag_text(const py::handle& value);
 // text; True and False, and integers beyond 64 bits, as their text, which every numeric parameter
 // refuses with the CLI's message.
 RawValue keyword_value(const py::handle& value);
+
+// The entries of a parameter table (config/parameter.hpp) that the Python module takes, as dicts:
+// name, help, type, unit, range, default, engines, sweep_axis, store_column.
+py::list parameter_list(const std::vector<Parameter>& table);
 
 // Keyword arguments by flag name: '_' reads as '-' (dt_factor -> dt-factor); None means "not
 // given" and is dropped.

@@ -38,6 +38,26 @@ RawValue keyword_value(const py::handle& value) {
   return RawValue{std::string(py::str(value))};
 }
 
+py::list parameter_list(const std::vector<Parameter>& table) {
+  py::list out;
+  for (const Parameter& p : table) {
+    if (!(p.uses & kUsePython)) continue;
+    py::dict d;
+    d["name"] = p.name;
+    d["help"] = p.help();
+    d["type"] = p.type_name();
+    d["unit"] = p.unit;
+    d["range"] = p.range;
+    d["default"] = p.fallback;
+    d["engines"] = p.engines == EngineScope::Soft ? "soft" : p.engines == EngineScope::Hard ? "hard"
+                   : p.engines == EngineScope::TimeStepped ? "time-stepped" : "any";
+    d["sweep_axis"] = p.sweep_axis;
+    d["store_column"] = p.store_column;
+    out.append(d);
+  }
+  return out;
+}
+
 std::map<std::string, py::object> flag_arguments(const py::kwargs& kwargs) {
   std::map<std::string, py::object> out;
   for (const auto& [key, value] : kwargs) {

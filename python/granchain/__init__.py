@@ -38,6 +38,7 @@ from ._granchain import (  # noqa: F401  (the public API)
     ntot_slope_per_ln_k,
     parse_value_list,
     q_ratio,
+    collapse_parameters,
     run_parameters,
 )
 from .store import Store, analyze, export  # noqa: F401
@@ -99,3 +100,7 @@ def collapse(*, N=3, e=0.03, k=None, engine="exact", setup="free", a=1.0, v0=1.0
                 collapse_collisions=collapse_collisions, collapse_time=collapse_time, db=db,
                 record_collisions=record_collisions)
     return _granchain.collapse(**args)
+
+
+collapse.__doc__ += "\n    Parameters (the flags of ``granchain collapse``, one e and one k per call):\n" + "".join(
+    f"\n        {p['name'].replace('-', '_')}: {p['help']}" for p in collapse_parameters())

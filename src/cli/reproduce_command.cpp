@@ -42,6 +42,7 @@ int exit_code(FigureStatus status) {
 // the figures under --time-limit).
 void report_failure(const std::string& figure, const FigureOutcome& out) {
   const std::string name = figure.empty() ? "" : figure + ": ";
+  for (const std::string& f : out.failed_points) fmt::print(stderr, "granchain: error: {}run turned unphysical, not stored: {}\n", name, f);
   switch (out.status) {
     case FigureStatus::Done:
     case FigureStatus::PointsFailed: return;
@@ -143,8 +144,8 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
     if (!out.drawn.empty()) fmt::print("figure: {}\n", out.drawn);
     if (!r.report_path.empty()) fmt::print("report: {}\n", r.report_path);
   });
+  report_failure("", result.computing);
   if (result.computing.status != FigureStatus::Done) {
-    report_failure("", result.computing);
     fmt::print("runs:   {}\n", o.db);
     return exit_code(result.computing.status);
   }

@@ -174,7 +174,7 @@ void check_contact_time(const RunOptions& o, const std::map<std::string, RawValu
   const auto resolved = [&](double k, double m, double e, double t) { return tau(k, m, e) >= shortest_resolved_time(t, fine); };
   if (resolved(p.k, p.m, p.e, t_end)) return;
   const ChainParameters def;
-  const double t_def = (p.N < 50 ? 1e4 : 1e3) * 1.1;
+  const double t_def = default_measuring_time(p.N) * 1.1;
   const std::string name = culprit({"k", "m", "T", "transient"}, raw, [&](const std::string& n) {
     if (n == "k") return !resolved(p.k, def.m, def.e, t_def);
     if (n == "m") return !resolved(def.k, p.m, def.e, t_def);
@@ -230,6 +230,8 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
 
 }  // namespace
 
+double default_measuring_time(int N) { return N < 50 ? 1e4 : 1e3; }
+
 double shortest_resolved_time(double t, bool fine) { return kResolutionSteps * (fine ? std::ldexp(ulp(t), -53) : ulp(t)); }
 
 double largest_resolved_k(double m, double e, double t, bool fine) {
@@ -268,7 +270,7 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   } else if (raw.count("tc")) {
     throw InputError("--tc: the TC model belongs to --engine hard");
   }
-  o.spec.T = late.count("T") ? late["T"] : (o.spec.params.N < 50 ? 1e4 : 1e3);
+  o.spec.T = late.count("T") ? late["T"] : default_measuring_time(o.spec.params.N);
   o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;
   check_contact_time(o, raw);
   check_height_scale(o, raw);

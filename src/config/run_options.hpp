@@ -25,6 +25,9 @@ const std::vector<Parameter>& run_parameters();
 // T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.
 RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw);
 
+// The paper's measuring time, the default of T: 1e4 for N < 50, 1e3 for N >= 50.
+double default_measuring_time(int N);
+
 // The shortest interval a clock resolves at time t: 1e6 times its resolution there, the span a
 // contact, a profile sample or a trace step must at least have. A double clock (profile samples,
 // trace steps, the time-stepped and hard engines) resolves ulp(t); the exact engine's FineTime

@@ -33,13 +33,15 @@ struct SweepAnalysis {
   std::vector<SweepPoint> points;
   StoreAnalysis a;
   FigureStatus status = FigureStatus::Done;
+  std::vector<std::string> failed;  // points that turned unphysical
   std::string grid_text;  // for the reports
 };
 
 SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlock>& blocks, const std::string& label) {
   SweepAnalysis s;
   s.points = grid_points(blocks);
-  s.status = run_missing_points(s.points, o, label).empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
+  s.failed = run_missing_points(s.points, o, label);
+  s.status = s.failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
   s.grid_text = fmt::format("k = {} (fits over k >= {}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
                             "e = 1 - c/N for c = 5, 4, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2 and e = {}; {} runs",
@@ -124,7 +126,7 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
     fit_row("A2_sign", x->has_A2_sign, x->A2_sign, "e_c2 (curvature changes sign)", "A = 3.0");
   }
   const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
-  FigureOutcome out{s.status, "", drawn, s.a.run_seconds};
+  FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig6 --preset {}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
                              "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
                              "its fit lines (Eq. e-fit) stand in.\n\n",
@@ -166,7 +168,7 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
     }
   }
   const std::string drawn = draw_figure(o, "fig7", plot, "scaling_collapse.py");
-  FigureOutcome out{s.status, "", drawn, s.a.run_seconds};
+  FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig7 --preset {}`. The sweep of fig6; {} points classified "
                              "logarithmically collapsing, their slopes b per decade of k. Figure: `fig7.png` (and .pdf): (a) b/N^(5/2) "
                              "against X with A = 2.6, (b) with this sweep's A, (c) b/N^(1/2) against N(1 − e).\n\n",
@@ -213,7 +215,7 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
                       plus_minus(x->alpha_fit.intercept, x->alpha_fit.intercept_error), x->alpha_fit.chi2, x->alpha_fit.dof);
   }
   const std::string drawn = draw_figure(o, "fig9", plot, "alpha_vs_n.py");
-  FigureOutcome out{s.status, "", drawn, s.a.run_seconds};
+  FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
                              "n_coll = c k^α fitted over k >= {}. Figure: `fig9.png` (and .pdf).\n\n",
                              o.preset, power_of_ten_text(preset_k_min(o)));
@@ -274,7 +276,7 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o) {
                          num(f.has_alpha_bar, f.alpha_bar.error), row.ec1, row.ec2, row.alpha);
     }
   write_output(output_path(o, "table1.csv"), csv);
-  FigureOutcome out{s.status, "", output_path(o, "table1.csv"), s.a.run_seconds};
+  FigureOutcome out{s.status, "", output_path(o, "table1.csv"), s.a.run_seconds, "", s.failed};
   out.markdown = fmt::format("Command: `granchain reproduce --figure table1 --preset {}`. N = 25, 50 at k_B T0 = 1, 2, 4, 10; {}. "
                              "Also `table1.csv`.\n\n",
                              o.preset, s.grid_text);

@@ -132,7 +132,6 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
   if (!o.quiet) cb = SweepProgressPrinter(tty, "reproduce " + label);
   if (o.time_limit > 0) runner.set_time_limit(std::max(o.time_left(), 0.0));
   runner.run(o.threads, cb, tty ? 0.5 : 30.0);
-  for (const auto& f : failures) fmt::print(stderr, "granchain: error: run turned unphysical, not stored: {}\n", f);
   if (const std::size_t left = runner.not_started(); left > 0)
     throw TimeLimitReached(fmt::format("{} of its points not started (estimated {} of one core)", left,
                                        format_duration(runner.not_started_cost())));

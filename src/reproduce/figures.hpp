@@ -63,6 +63,7 @@ struct FigureOutcome {
   // one), summed over whichever sittings ran them; negative for a figure without such runs.
   double run_seconds = -1.0;
   std::string message;  // why it ended as it did, for a status other than Done
+  std::vector<std::string> failed_points;  // PointsFailed: each point left out, and why
 };
 
 // One block of a figure's driven-column grid, as texts of `granchain sweep` (lists, ranges).
@@ -84,7 +85,7 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
 
 // Runs the points the store does not hold yet on o.threads threads (progress on stderr unless
 // quiet) and stores each as it finishes; returns one line per point that turned unphysical (not
-// stored). Throws StoreError.
+// stored), for the figure's outcome. Throws StoreError, or TimeLimitReached.
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label);
 
 // A free-space collapse count as stored in o.db (ResultsStore::find_collapse), or run now (progress

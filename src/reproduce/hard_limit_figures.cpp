@@ -365,6 +365,7 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
   FigureOutcome out{failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
                     a.run_seconds};
   for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
+  out.failed_points = failed;
   out.markdown += excluded_markdown(a);
   return out;
 }

@@ -104,6 +104,7 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
   if (!problem.empty()) throw std::runtime_error(problem);
   FigureOutcome out;
   out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
+  out.failed_points = failures;
   out.run_seconds = a.run_seconds;
   out.drawn = fmt::format("{}_N{}_T01_exact.png (and .pdf)", prefix, fig5 ? "25" : "<N>");
   out.markdown = fmt::format(
@@ -154,6 +155,7 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
   const std::string drawn = draw_figure(o, "fig8", plot, "partial_cond.py");
   FigureOutcome out;
   out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
+  out.failed_points = failures;
   out.run_seconds = a.run_seconds;
   out.drawn = drawn;
   out.markdown = fmt::format(

@@ -138,7 +138,7 @@ FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& c
       if (f->grid) {
         ReproduceFlags fo = o;
         fo.figure = f->name;
-        run_missing_points(grid_points(f->grid(fo)), fo, f->name);
+        for (std::string& p : run_missing_points(grid_points(f->grid(fo)), fo, f->name)) out.failed_points.push_back(std::move(p));
       }
     for (const FigureEntry* f : chosen)
       if (f->counts) {
@@ -147,11 +147,14 @@ FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& c
         for (const CollapseSpec& spec : f->counts(fo)) stored_or_run_collapse(spec, fo, f->name);
       }
   } catch (const TimeLimitReached& e) {
-    out = {FigureStatus::TimeLimit, "", "", -1.0, e.what()};
+    out.status = FigureStatus::TimeLimit;
+    out.message = e.what();
   } catch (const StoreError& e) {
-    out = {FigureStatus::StoreFailed, "", "", -1.0, e.what()};
+    out.status = FigureStatus::StoreFailed;
+    out.message = e.what();
   } catch (const UnphysicalStateError& e) {
-    out = {FigureStatus::Unphysical, "", "", -1.0, e.what()};
+    out.status = FigureStatus::Unphysical;
+    out.message = e.what();
   }
   return out;
 }

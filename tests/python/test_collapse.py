@@ -83,3 +83,20 @@ def test_bad_input_raises_value_error_with_the_clis_message(cli, kwargs, flags):
 def test_soft_engines_need_one_k():
     with pytest.raises(ValueError, match="^--k: give the elastic constant"):
         granchain.collapse(N=3, e=0.05)
+
+
+def test_keywords_are_the_parameter_tables():
+    import inspect
+    run_names = {p["name"].replace("-", "_") for p in granchain.run_parameters()}
+    assert run_names == set(inspect.signature(granchain.run).parameters) - {"audit", "progress"}
+    collapse_names = {p["name"].replace("-", "_") for p in granchain.collapse_parameters()}
+    assert collapse_names == set(inspect.signature(granchain.collapse).parameters) - {"db", "record_collisions"}
+    assert all(p["range"] and p["range"] in p["help"] for p in granchain.collapse_parameters())
+
+
+def test_numbers_typed_or_as_text_count_the_same():
+    a = granchain.collapse(N=3, e=0.05, k=1e6, realizations=20, seed=2)
+    b = granchain.collapse(N="3", e="0.05", k="1e6", realizations="20", seed="2")
+    c = granchain.collapse(N=np.int64(3), e=np.float64(0.05), k=np.float64(1e6), realizations=20, seed=2)
+    assert a["n_tot"] == b["n_tot"] == c["n_tot"]
+    assert np.array_equal(a["per_realization"]["n_tot"], c["per_realization"]["n_tot"])
