@@ -454,7 +454,7 @@ TEST(CollapseRegimes, AcrossNFitsTheBoundaryAndTheCurvatureSignChange) {
       const double g = d > 1e-12 ? 0.02 * N * ((1.0 - e) - 3.0 / N) : 0.0;
       for (double k : kGrid) {
         const double x = std::log10(k);
-        runs.push_back({"exact", N, 1.0, e, k, 10.0 + b * x + g * x * x, 1e-3, true});
+        runs.push_back({EngineKind::Exact, N, 1.0, e, k, 10.0 + b * x + g * x * x, 1e-3, true});
       }
     }
   const RegimeReport r = analyze_runs(runs, 1e6);

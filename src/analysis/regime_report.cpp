@@ -21,7 +21,7 @@ bool table1_e(double e) {
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   // (engine, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
-  using Key = std::tuple<std::string, int, double>;
+  using Key = std::tuple<EngineKind, int, double>;
   using Runs = std::vector<std::pair<double, double>>;
   std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
@@ -45,7 +45,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   }
   // Results identical to the last bit at one point: not two independent samples, whatever their
   // seeds say (zero scatter); the first is kept.
-  std::map<std::tuple<std::string, int, double, double, double, double, double>, std::size_t> first_result;
+  std::map<std::tuple<EngineKind, int, double, double, double, double, double>, std::size_t> first_result;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
     std::string why = unusable(r);
@@ -133,7 +133,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     report.families.push_back(std::move(fam));
   }
   // Across N for each (engine, kT0).
-  std::map<std::pair<std::string, double>, std::vector<const FamilyAnalysis*>> by_temperature;
+  std::map<std::pair<EngineKind, double>, std::vector<const FamilyAnalysis*>> by_temperature;
   for (const auto& f : report.families) by_temperature[{f.engine, f.kT0}].push_back(&f);
   for (const auto& [key, fams] : by_temperature) {
     AcrossN a;

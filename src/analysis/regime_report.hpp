@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/blocking.hpp"
+#include "engines/engine_registry.hpp"
 #include "analysis/collapse_regimes.hpp"
 #include "analysis/critical_restitution.hpp"
 
@@ -15,7 +16,7 @@ namespace granchain::analysis {
 
 // One stored run's result (several runs of one point are combined by weighted mean).
 struct NcollRun {
-  std::string engine;
+  EngineKind engine = EngineKind::Exact;
   int N = 0;
   double kT0 = 1, e = 0, k = 0;
   double n_coll = 0, n_coll_err = 0;
@@ -30,7 +31,7 @@ struct NcollRun {
 // A run the analysis could not use, and why.
 struct ExcludedRun {
   std::int64_t run_id = 0;
-  std::string engine;
+  EngineKind engine = EngineKind::Exact;
   int N = 0;
   double kT0 = 1, e = 0, k = 0;
   std::string reason;
@@ -45,7 +46,7 @@ struct CurveAnalysis {  // one (engine, N, kT0, e)
 };
 
 struct FamilyAnalysis {  // one (engine, N, kT0)
-  std::string engine;
+  EngineKind engine = EngineKind::Exact;
   int N = 0;
   double kT0 = 1;
   std::vector<CurveAnalysis> curves;  // e ascending
@@ -66,7 +67,7 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
 };
 
 struct AcrossN {  // one (engine, kT0), over N
-  std::string engine;
+  EngineKind engine = EngineKind::Exact;
   double kT0 = 1;
   bool has_A1 = false, has_A2 = false, has_alpha_fit = false;
   InverseNFit A1, A2;  // e_c1 (b -> 0), e_c2 (convex by 2 errors / not: the bracket)

@@ -16,7 +16,9 @@
 
 namespace granchain {
 
-enum class EngineKind { Exact, Reference, ReferenceLocated, Hard };
+// Declared in the order of their names (exact, hard, reference, reference-located), so that
+// whatever is ordered by kind (the analysis's families) lists them as their names sort.
+enum class EngineKind { Exact, Hard, Reference, ReferenceLocated };
 
 struct EngineChoice {
   EngineKind kind = EngineKind::Exact;  // the registry's first engine is the default

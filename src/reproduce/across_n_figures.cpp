@@ -83,7 +83,7 @@ std::string t0_trend_text(const std::vector<analysis::DataPoint>& pts, int digit
 
 const analysis::AcrossN* across_at(const StoreAnalysis& a, double kT0) {
   for (const auto& x : a.report.across)
-    if (x.engine == engine_name(EngineKind::Exact) && x.kT0 == kT0) return &x;
+    if (x.engine == EngineKind::Exact && x.kT0 == kT0) return &x;
   return nullptr;
 }
 

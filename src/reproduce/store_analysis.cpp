@@ -33,7 +33,7 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       continue;
     const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{engine_name(row.engine), row.params.N, row.params.kT0};
+    const FamilyKey key{row.engine, row.params.N, row.params.kT0};
     const double e = row.params.e, k = row.params.k;
     auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);
@@ -142,7 +142,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
     analysis::NcollRun run;
-    run.engine = engine_name(row.engine.kind);
+    run.engine = row.engine.kind;
     run.N = row.params.N;
     run.kT0 = row.params.kT0;
     run.e = row.params.e;
@@ -203,7 +203,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
       }
       curves.push_back(cj);
     }
-    j["families"].push_back({{"engine", f.engine}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
+    j["families"].push_back({{"engine", engine_name(f.engine)}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
                              {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
                              {"local_alpha_bar", local_exponents_json(f.local_alpha_bar)},
                              {"e_c2", critical_json(f.e_c2)},
@@ -214,13 +214,13 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   }
   j["excluded"] = nlohmann::json::array();
   for (const auto& x : a.report.excluded)
-    j["excluded"].push_back({{"run_id", x.run_id}, {"engine", x.engine}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
+    j["excluded"].push_back({{"run_id", x.run_id}, {"engine", engine_name(x.engine)}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
                              {"k", std::isfinite(x.k) ? nlohmann::json(x.k) : nlohmann::json(nullptr)}, {"reason", x.reason}});
   for (const auto& a : a.report.across) {
     auto inv = [](bool has, const analysis::InverseNFit& f) {
       return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
     };
-    j["across_N"].push_back({{"engine", a.engine}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
+    j["across_N"].push_back({{"engine", engine_name(a.engine)}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
                              {"A_boundary", inv(a.has_A1_boundary, a.A1_boundary)}, {"A_ec2_curvature_sign", inv(a.has_A2_sign, a.A2_sign)},
                              {"alpha_vs_log10_N", a.has_alpha_fit ? nlohmann::json{{"slope", a.alpha_fit.slope},
                                                                                    {"slope_err", a.alpha_fit.slope_error},
@@ -234,13 +234,13 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
 std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
   if (excluded.empty()) return "";
   // Runs left out for one reason at one (engine, N, T0, e, k), named together.
-  std::map<std::tuple<std::string, std::string, int, double, double, double>, std::vector<std::int64_t>> groups;
+  std::map<std::tuple<std::string, EngineKind, int, double, double, double>, std::vector<std::int64_t>> groups;
   for (const auto& x : excluded) groups[{x.reason, x.engine, x.N, x.kT0, x.e, x.k}].push_back(x.run_id);
   std::string out = fmt::format("left out of the analysis: {} run{}\n", excluded.size(), excluded.size() == 1 ? "" : "s");
   for (const auto& [g, ids] : groups) {
     std::string list;
     for (std::int64_t id : ids) list += fmt::format("{}{}", list.empty() ? "" : ", ", id);
-    out += fmt::format("  engine {}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", std::get<1>(g), std::get<2>(g),
+    out += fmt::format("  engine {}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", engine_name(std::get<1>(g)), std::get<2>(g),
                        std::get<3>(g), std::get<4>(g), std::get<5>(g), ids.size() == 1 ? "" : "s", list, std::get<0>(g));
   }
   return out;
@@ -256,7 +256,7 @@ std::string analysis_text(const StoreAnalysis& a) {
   out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));
   out += excluded_text(a.report.excluded);
   for (const auto& f : a.report.families) {
-    out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", f.engine, f.N, f.kT0);
+    out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", engine_name(f.engine), f.N, f.kT0);
     out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
                "K_i inversion (at largest k)");
     const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
@@ -325,7 +325,7 @@ std::string analysis_text(const StoreAnalysis& a) {
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit)) continue;
-    out += fmt::format("\nacross N (engine {}, T0 = {:g}):", a.engine, a.kT0);
+    out += fmt::format("\nacross N (engine {}, T0 = {:g}):", engine_name(a.engine), a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
     if (a.has_A1_boundary)

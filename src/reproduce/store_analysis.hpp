@@ -23,7 +23,7 @@ struct Condensation {
   std::vector<analysis::ParticleValue> K, sigma;
   std::vector<double> sigma0;
 };
-using FamilyKey = std::tuple<std::string, int, double>;  // engine, N, kT0
+using FamilyKey = std::tuple<EngineKind, int, double>;  // engine, N, kT0
 
 struct StoreAnalysis {
   std::size_t runs = 0;
