@@ -37,10 +37,11 @@ struct SweepAnalysis {
   std::string grid_text;  // for the reports
 };
 
-SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlock>& blocks, const std::string& label) {
+SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlock>& blocks, const std::string& label,
+                              ReproductionLog& log) {
   SweepAnalysis s;
   s.points = grid_points(blocks);
-  s.failed = run_missing_points(s.points, o, label);
+  s.failed = run_missing_points(s.points, o, label, log);
   s.status = s.failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
   s.grid_text = fmt::format("k = {} (fits over k >= {}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
@@ -50,7 +51,9 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
 }
 
 // The across-N sweep of Figs. 6, 7 and 9 (k_B T0 = 1).
-SweepAnalysis across_n(const ReproduceFlags& o) { return run_and_analyze(o, across_n_grid(o), o.figure + " (N = 20..150)"); }
+SweepAnalysis across_n(const ReproduceFlags& o, ReproductionLog& log) {
+  return run_and_analyze(o, across_n_grid(o), o.figure + " (N = 20..150)", log);
+}
 
 std::string critical_text(const analysis::CriticalValue& c, int digits = 4) {
   return c.found ? plus_minus(c.value, c.error, digits) : "not found";
@@ -94,8 +97,8 @@ std::vector<GridBlock> table1_grid(const ReproduceFlags& o) { return across_bloc
 
 // Fig. bifurcationdiagram: e_c1 and e_c2 against 1/N with the fits (1 - e_c) = A/N, and the e range
 // of the partially condensed state.
-FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
-  const SweepAnalysis s = across_n(o);
+FigureOutcome reproduce_bifurcation(const ReproduceFlags& o, ReproductionLog& log) {
+  const SweepAnalysis s = across_n(o, log);
   const analysis::AcrossN* x = across_at(s.a, 1.0);
   nlohmann::json plot = {{"families", nlohmann::json::array()}, {"A1", nullptr}, {"A2", nullptr}, {"A1_boundary", nullptr}, {"A2_sign", nullptr}};
   std::string table =
@@ -142,8 +145,8 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o) {
 
 // Fig. logfitbX: b / N^{5/2} against X = (1 - e) - A/N over the logarithmically collapsing points, with
 // A = 2.6 (the paper's) and with the A fitted to this sweep's e_c1; b / N^{1/2} against N (1 - e).
-FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
-  const SweepAnalysis s = across_n(o);
+FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o, ReproductionLog& log) {
+  const SweepAnalysis s = across_n(o, log);
   const analysis::AcrossN* x = across_at(s.a, 1.0);
   std::vector<analysis::ScalingPoint> pts;
   nlohmann::json plot = {{"points", nlohmann::json::array()}, {"fits", nlohmann::json::array()}};
@@ -181,8 +184,8 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o) {
 
 // Fig. powerexpo: alpha at e = 0.1..0.4 against log10 N, and the fit alpha = p log10 N + q of the
 // mean exponents (Eq. alphafit).
-FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
-  const SweepAnalysis s = across_n(o);
+FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log) {
+  const SweepAnalysis s = across_n(o, log);
   const analysis::AcrossN* x = across_at(s.a, 1.0);
   nlohmann::json plot = {{"families", nlohmann::json::array()}, {"fit", nullptr}};
   std::string table =
@@ -241,8 +244,8 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o) {
 }
 
 // Table 1: e_c1, e_c2 and alpha bar for N = 25 and 50 at k_B T0 = 1, 2, 4, 10.
-FigureOutcome reproduce_table1(const ReproduceFlags& o) {
-  const SweepAnalysis s = run_and_analyze(o, table1_grid(o), "table1 (N = 25, 50; k_B T0 = 1, 2, 4, 10)");
+FigureOutcome reproduce_table1(const ReproduceFlags& o, ReproductionLog& log) {
+  const SweepAnalysis s = run_and_analyze(o, table1_grid(o), "table1 (N = 25, 50; k_B T0 = 1, 2, 4, 10)", log);
   struct PaperRow {
     int N;
     double T0;

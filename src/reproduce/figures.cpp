@@ -97,7 +97,8 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
   return r;
 }
 
-std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label) {
+std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label,
+                                            ReproductionLog& log) {
   std::vector<std::string> failures;
   if (o.stored_only) {
     const std::vector<std::size_t> missing = points_to_run(points, ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys());
@@ -106,13 +107,13 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
     if (!o.quiet)
       fmt::print(stderr, "reproduce {} ({}): {} runs, {} in {}; --stored-only: drawn from those, {} missing\n", label, o.preset,
                  points.size(), points.size() - missing.size(), o.db, missing.size());
-    if (!missing.empty()) o.partial->push_back(fmt::format("{}: {} of {} runs", label, points.size() - missing.size(), points.size()));
+    if (!missing.empty()) log.partial.push_back(fmt::format("{}: {} of {} runs", label, points.size() - missing.size(), points.size()));
     return failures;
   }
   ResultsStore store(o.db);
   std::vector<std::size_t> todo;
   for (std::size_t i : points_to_run(points, store.point_keys())) {
-    if (o.failed_keys->count(points[i].key)) failures.push_back(points[i].key + ": turned unphysical earlier in this command");
+    if (log.failed_keys.count(points[i].key)) failures.push_back(points[i].key + ": turned unphysical earlier in this command");
     else todo.push_back(i);
   }
   if (!o.quiet)
@@ -124,7 +125,7 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
       store.insert_sweep_point(*r, p.key, 1, p.replica);
     } else {
       failures.push_back(p.key + ": " + error);
-      o.failed_keys->insert(p.key);
+      log.failed_keys.insert(p.key);
     }
   });
   const bool tty = isatty(STDERR_FILENO) != 0;

@@ -3,7 +3,6 @@
 // needs (run into the results store, reusing what it holds), the analysis of exactly those points,
 // and the files a figure writes. One *_figures.cpp per group of figures implements them.
 #include <chrono>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <set>
@@ -29,13 +28,16 @@ struct ReproduceFlags {
   double k_min = 0;
   std::chrono::steady_clock::time_point started_at = std::chrono::steady_clock::now();
   double time_left() const;  // seconds left of the time limit (infinity without one)
-  // --stored-only: what each figure's grids lacked ("fig6 (N = 20..150): 112 of 672 runs"), for its
-  // report; shared, so figures (which get the flags as const) can add to it.
-  std::shared_ptr<std::vector<std::string>> partial = std::make_shared<std::vector<std::string>>();
-  // Keys of points that turned unphysical in this command: not run again by a later figure.
-  std::shared_ptr<std::set<std::string>> failed_keys = std::make_shared<std::set<std::string>>();
   bool paper() const { return preset == "paper"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
+};
+
+// What a reproduction learns while its figures run, for the figures after: the points that
+// turned unphysical in this command (not run again by a later figure), and what --stored-only
+// found missing for the figure being drawn ("fig6 (N = 20..150): 112 of 672 runs"), for its report.
+struct ReproductionLog {
+  std::set<std::string> failed_keys;
+  std::vector<std::string> partial;
 };
 
 // A time limit left points of a figure unstarted: the command stops, to be repeated.
@@ -86,7 +88,8 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
 // Runs the points the store does not hold yet on o.threads threads (progress on stderr unless
 // quiet) and stores each as it finishes; returns one line per point that turned unphysical (not
 // stored), for the figure's outcome. Throws StoreError, or TimeLimitReached.
-std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label);
+std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label,
+                                            ReproductionLog& log);
 
 // A free-space collapse count as stored in o.db (ResultsStore::find_collapse), or run now (progress
 // line on stderr unless quiet) and stored. Throws StoreError or UnphysicalStateError.
@@ -137,20 +140,20 @@ std::string fine_structure_report(const std::string& db, const std::vector<Sweep
 // The figures. Each runs what it needs, draws into --out and returns its report section; throws
 // StoreError (store), UnphysicalStateError (a trajectory that must not fail) or OutputError
 // (an output or plot that could not be written).
-FigureOutcome reproduce_model_sketch(const ReproduceFlags& o);        // fig1 (1dmodel)
-FigureOutcome reproduce_three_body(const ReproduceFlags& o);          // fig2 (threebodycollapse)
-FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o);        // fig3, fig4 (N = 3..6), fig5 (N = 25)
-FigureOutcome reproduce_bifurcation(const ReproduceFlags& o);         // fig6 (bifurcationdiagram)
-FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o);    // fig7 (logfitbX)
-FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o);  // fig8 (partial_cond)
-FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o);          // fig9 (powerexpo)
-FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o);   // fig10 (ntot)
+FigureOutcome reproduce_model_sketch(const ReproduceFlags& o, ReproductionLog& log);        // fig1 (1dmodel)
+FigureOutcome reproduce_three_body(const ReproduceFlags& o, ReproductionLog& log);          // fig2 (threebodycollapse)
+FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o, ReproductionLog& log);        // fig3, fig4 (N = 3..6), fig5 (N = 25)
+FigureOutcome reproduce_bifurcation(const ReproduceFlags& o, ReproductionLog& log);         // fig6 (bifurcationdiagram)
+FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o, ReproductionLog& log);    // fig7 (logfitbX)
+FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o, ReproductionLog& log);  // fig8 (partial_cond)
+FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log);          // fig9 (powerexpo)
+FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o, ReproductionLog& log);   // fig10 (ntot)
 std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o);  // the counts fig10 reads
-FigureOutcome reproduce_table1(const ReproduceFlags& o);              // table1
+FigureOutcome reproduce_table1(const ReproduceFlags& o, ReproductionLog& log);              // table1
 // Beyond the paper (group `beyond`): the k -> infinity limit and the collision sequences.
-FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o);  // limit-free
+FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o, ReproductionLog& log);  // limit-free
 std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o);  // the counts limit-free reads
-FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o);      // limit-driven
-FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o);   // intervals
+FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o, ReproductionLog& log);      // limit-driven
+FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o, ReproductionLog& log);   // intervals
 
 }  // namespace granchain

@@ -28,7 +28,7 @@ std::vector<CountSeries> fig10_series(const ReproduceFlags& o) {
 
 std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o) { return count_specs(fig10_series(o), o); }
 
-FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
+FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o, ReproductionLog&) {
   const std::vector<CountSeries> series = fig10_series(o);
   nlohmann::json plot = {{"series", nlohmann::json::array()}};
   std::string n3 = "| e | slope of n_tot per decade (last two k) | all collisions, -ln10/ln q | Eq. ntot-log |\n|---|---|---|---|\n";
@@ -60,7 +60,7 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o) {
     plot["series"].push_back(js);
   }
   const std::string drawn = draw_figure(o, "fig10", plot, "ntot.py");
-  FigureOutcome out{FigureStatus::Done, "", drawn};
+  FigureOutcome out{FigureStatus::Done, "", drawn, -1.0, "", {}};
   out.markdown = fmt::format("Command: `granchain reproduce --figure fig10 --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
                              "dv0 = 0.1, stop rule `ends`), exact engine; the same launches at every k, so slopes are paired per launch. "
                              "Figure: `fig10.png` (and .pdf).\n\n",

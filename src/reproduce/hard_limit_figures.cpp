@@ -240,7 +240,7 @@ std::string three_body_increments(const std::vector<double>& k, const std::vecto
 
 std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o) { return count_specs(free_series(o), o); }
 
-FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
+FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o, ReproductionLog& log) {
   const double k_fit = o.smoke() ? 1e4 : 1e5;
   nlohmann::json plot = {{"title", "free-space collapse"}, {"y_label", "n_tot"}, {"series", nlohmann::json::array()}};
   std::string md = fmt::format("Command: `granchain reproduce --figure limit-free --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
@@ -268,7 +268,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
       }
     }
     if (results.size() < ks.size())
-      o.partial->push_back(fmt::format("limit-free (N = {}, e = {:g}): {} of {} counts", s.N, s.e, results.size(), ks.size()));
+      log.partial.push_back(fmt::format("limit-free (N = {}, e = {:g}): {} of {} counts", s.N, s.e, results.size(), ks.size()));
     if (results.size() < 2) {
       md += fmt::format("\n### N = {}, e = {:g} ({} launches)\n\nFewer than two of its counts are stored (--stored-only): not drawn.\n", s.N,
                         s.e, s.launches);
@@ -315,7 +315,7 @@ FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o) {
     plot["series"].push_back(js);
   }
   if (o.stored_only && drawn == 0) throw NothingStored(fmt::format("no free-space series of limit-free has two counts in {}", o.db));
-  FigureOutcome out{FigureStatus::Done, md, draw_figure(o, "limit-free", plot, "limit_exponents.py")};
+  FigureOutcome out{FigureStatus::Done, md, draw_figure(o, "limit-free", plot, "limit_exponents.py"), -1.0, "", {}};
   return out;
 }
 
@@ -326,9 +326,9 @@ std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o) {
   return {{"25", "0.1:0.5:0.1", "1e4:1e9:x10", "1000"}};
 }
 
-FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
+FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o, ReproductionLog& log) {
   const std::vector<SweepPoint> points = grid_points(driven_limit_grid(o));
-  const std::vector<std::string> failed = run_missing_points(points, o, "limit-driven");
+  const std::vector<std::string> failed = run_missing_points(points, o, "limit-driven", log);
   const double k_fit = preset_k_min(o);
   const StoreAnalysis a = analyze_points(o.db, points, k_fit);
   const std::string T = driven_limit_grid(o)[0].T;
@@ -363,9 +363,8 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o) {
       plot["series"].push_back(js);
     }
   FigureOutcome out{failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed, md, draw_figure(o, "limit-driven", plot, "limit_exponents.py"),
-                    a.run_seconds};
+                    a.run_seconds, "", failed};
   for (const std::string& f : failed) out.markdown += "\nFailed point (left out): " + f + "\n";
-  out.failed_points = failed;
   out.markdown += excluded_markdown(a);
   return out;
 }

@@ -375,7 +375,7 @@ Section soft_sequences(double e, const std::vector<double>& ks, int launches, co
 
 }  // namespace
 
-FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o) {
+FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o, ReproductionLog&) {
   const int hard_launches = o.smoke() ? 20 : o.paper() ? 1000 : 200;
   const int soft_launches = o.smoke() ? 4 : o.paper() ? 200 : 40;
   const std::vector<double> ks = o.smoke() ? std::vector<double>{1e5, 1e6} : o.paper() ? std::vector<double>{1e6, 1e8, 1e10, 1e12, 1e14, 1e16, 1e18, 1e20}
@@ -394,7 +394,7 @@ FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o) {
     plot["soft"].push_back(s.json);
     md += h.markdown + s.markdown;
   }
-  return {FigureStatus::Done, md, draw_figure(o, "intervals", plot, "intervals.py")};
+  return {FigureStatus::Done, md, draw_figure(o, "intervals", plot, "intervals.py"), -1.0, "", {}};
 }
 
 }  // namespace granchain

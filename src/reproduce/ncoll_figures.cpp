@@ -82,11 +82,11 @@ std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o) {
 // Figs. cflogk, cfe (fig3, fig4: one sweep over N = 3..6, e = 0.05..1.0 by 0.05 refined around
 // each e_c(n)) and cfreqlogN25
 // (fig5: N = 25 on the paper's e grids), at the preset's k and T.
-FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
+FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o, ReproductionLog& log) {
   const bool fig5 = o.figure == "fig5";
   const GridBlock grid = ncoll_grid(o).front();
   const std::vector<SweepPoint> points = grid_points({grid});
-  const auto failures = run_missing_points(points, o, o.figure);
+  const auto failures = run_missing_points(points, o, o.figure, log);
   StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));
   // Fig. cfreqlogN25 marks the paper's own e_c1 = 0.894 and 0.878 < e_c2 < 0.884 (N = 25, T0 = 1).
   if (fig5)
@@ -124,10 +124,10 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o) {
 // Fig. partial_cond: sigma_i / sigma_0,i and K_i of every particle for N = 25, e = 0.82..0.92 (and
 // the elastic e = 1 as a check of sigma_0,i, which comes from the exact elastic column), at the
 // preset's largest k. The runs at e <= 0.90 are fig5's own points at that k.
-FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o) {
+FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o, ReproductionLog& log) {
   const GridBlock grid = partial_condensation_grid(o).front();
   const std::vector<SweepPoint> points = grid_points({grid});
-  const auto failures = run_missing_points(points, o, o.figure);
+  const auto failures = run_missing_points(points, o, o.figure, log);
   const StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));
   nlohmann::json plot = {{"N", 25}, {"k", grid.k}, {"curves", nlohmann::json::array()}};
   std::string table =

@@ -59,9 +59,9 @@ std::string report_name(const std::string& figure) { return figure == "fig5" ? "
 namespace {
 
 // Runs one figure and writes its report; a typed failure ends it with that status and message.
-FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
+FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o, ReproductionLog& log) {
   o.figure = f.name;
-  o.partial = std::make_shared<std::vector<std::string>>();
+  log.partial.clear();
   const auto failed = [](FigureStatus status, const std::exception& e) {
     FigureOutcome out;
     out.status = status;
@@ -69,9 +69,9 @@ FigureOutcome run_one(const FigureEntry& f, ReproduceFlags o) {
     return out;
   };
   try {
-    FigureOutcome out = f.run(o);
+    FigureOutcome out = f.run(o, log);
     std::string partial;
-    for (const std::string& p : *o.partial) partial += (partial.empty() ? "" : "; ") + p;
+    for (const std::string& p : log.partial) partial += (partial.empty() ? "" : "; ") + p;
     if (!partial.empty())
       out.markdown = fmt::format("**Partial (--stored-only): drawn from the runs stored so far — {}. Not a result.**\n\n", partial) +
                      out.markdown;
@@ -131,14 +131,14 @@ namespace {
 // drawn, so that the limit is spent on computing only: a repeat after a time limit always stores
 // what the last one could not, never redraws finished figures in the time it needs. Done when
 // everything is stored; TimeLimit when the limit came first; StoreFailed or Unphysical.
-FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o) {
+FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o, ReproductionLog& log) {
   FigureOutcome out;
   try {
     for (const FigureEntry* f : chosen)
       if (f->grid) {
         ReproduceFlags fo = o;
         fo.figure = f->name;
-        for (std::string& p : run_missing_points(grid_points(f->grid(fo)), fo, f->name)) out.failed_points.push_back(std::move(p));
+        for (std::string& p : run_missing_points(grid_points(f->grid(fo)), fo, f->name, log)) out.failed_points.push_back(std::move(p));
       }
     for (const FigureEntry* f : chosen)
       if (f->counts) {
@@ -164,8 +164,9 @@ FigureOutcome compute_within_time_limit(const std::vector<const FigureEntry*>& c
 ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, const ReproduceFlags& o,
                                 const std::function<void(const FigureReport&)>& on_figure) {
   ReproductionOutcome result;
+  ReproductionLog log;
   if (o.time_limit > 0 && !o.stored_only) {
-    result.computing = compute_within_time_limit(chosen, o);
+    result.computing = compute_within_time_limit(chosen, o, log);
     if (result.computing.status != FigureStatus::Done) return result;
   }
   std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
@@ -173,7 +174,7 @@ ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, c
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();
-    FigureReport report{f, run_one(*f, o), "", 0.0};
+    FigureReport report{f, run_one(*f, o, log), "", 0.0};
     report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const FigureOutcome& out = report.outcome;
     if (!out.markdown.empty()) report.report_path = output_path(o, report_name(f->name));

@@ -12,7 +12,7 @@ namespace granchain {
 struct FigureEntry {
   const char* name;   // --figure
   const char* label;  // the paper's LaTeX label
-  FigureOutcome (*run)(const ReproduceFlags&);
+  FigureOutcome (*run)(const ReproduceFlags&, ReproductionLog&);
   std::vector<GridBlock> (*grid)(const ReproduceFlags&);  // its driven-column sweeps, or null
   const char* group = "all";  // all: the paper's figures; beyond: past the paper (the k -> infinity limit)
   std::vector<CollapseSpec> (*counts)(const ReproduceFlags&) = nullptr;  // its free-space counts, or null

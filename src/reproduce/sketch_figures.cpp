@@ -32,7 +32,7 @@ TraceSpec window_of(int N, double e, double k, double from, double to, double dt
 
 // Fig. 1dmodel: the slope flow reduced to one line perpendicular to the slope (a sketch), a snapshot
 // of a simulated column of N = 25 above its thermal floor, and that column's z_i(t).
-FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
+FigureOutcome reproduce_model_sketch(const ReproduceFlags& o, ReproductionLog&) {
   const TraceSpec spec = window_of(25, 0.9, 1e6, 40, 50, 0.005);
   const Trajectory tr = record_trajectory(spec);
   const std::string prefix = output_path(o, "fig1");
@@ -43,7 +43,7 @@ FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
     floor_hits += e.kind == EventKind::FloorHit;
     contacts += e.kind == EventKind::ContactEnd;
   }
-  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)"};
+  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)", -1.0, "", {}};
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure fig1`. The paper's Fig. 1 is a schematic. Here: (a) a sketch of the slope flow and "
       "the line z perpendicular to the slope, (b) the model — N = 25 spheres of diameter d = 1 on a vertical line under gravity "
@@ -57,7 +57,7 @@ FigureOutcome reproduce_model_sketch(const ReproduceFlags& o) {
 // Fig. threebodycollapse: N = 3 in free space (launch 0 of Sec. III.D) at e = 0.065 < e_c(3) and
 // k = 1e14: z_i(t), and the intervals between successive collisions of the pair (1, 2), which
 // shrink by the factor q of Eq. (def_q) until they reach the contact time.
-FigureOutcome reproduce_three_body(const ReproduceFlags& o) {
+FigureOutcome reproduce_three_body(const ReproduceFlags& o, ReproductionLog&) {
   TraceSpec spec = window_of(3, 0.065, 1e14, 0, 2.5, 1e-3);
   spec.free_space = true;  // launch 0 of Sec. III.D, no gravity
   spec.run.params.g = 0.0;
@@ -78,7 +78,7 @@ FigureOutcome reproduce_three_body(const ReproduceFlags& o) {
     ratios += fmt::format("{}{:.4f}", ratios.empty() ? "" : ", ", (t12[n] - t12[n - 1]) / (t12[n - 1] - t12[n - 2]));
   int ends = 0;
   for (const Event& e : tr.events) ends += e.kind == EventKind::ContactEnd;
-  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)"};
+  FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)", -1.0, "", {}};
   out.markdown = fmt::format(
       "Command: `granchain reproduce --figure fig2`. The paper's Fig. 2 is a schematic. Here a simulated three-body collapse in free "
       "space: launch 0 of Sec. III.D (a = v0 = 1, dv0 = 0.1, seed 1), e = 0.065 < e_c(3) = {:.4f}, k = 1e14 (τ_c = {:.3g}), exact "
