@@ -19,14 +19,35 @@ EngineKind engine_of(const std::string& name, std::int64_t id) {
   }
 }
 
+// The columns every row of runs and profiles has (the run's id, set-up, engine and the model's
+// parameters), and their values in the current row.
+struct RunColumns {
+  int id, setup, engine, N, e, k, T0, m, d, g;
+  RunColumns(SelectedRows& rows, const char* id_column)
+      : id(rows.column(id_column)), setup(rows.column("setup")), engine(rows.column("engine")), N(rows.column("N")),
+        e(rows.column("e")), k(rows.column("k")), T0(rows.column("T0")), m(rows.column("m")), d(rows.column("d")),
+        g(rows.column("g")) {}
+  void read(SqlStatement& r, std::int64_t& run_id, std::string& run_setup, EngineKind& kind, ChainParameters& p) const {
+    run_id = r.column_int(id);
+    run_setup = r.column_text(setup);
+    kind = engine_of(r.column_text(engine), run_id);
+    p.N = static_cast<int>(r.column_int(N));
+    p.e = r.column_double(e);
+    p.k = r.column_double(k);
+    p.kT0 = r.column_double(T0);
+    p.m = r.column_double(m);
+    p.d = r.column_double(d);
+    p.g = r.column_double(g);
+  }
+};
+
 }  // namespace
 
 std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection selection) {
   selection.table = ExportTable::Runs;
   SelectedRows rows(db_path, selection);
-  const int id = rows.column("id"), setup = rows.column("setup"), engine = rows.column("engine"), N = rows.column("N"),
-            e = rows.column("e"), k = rows.column("k"), T0 = rows.column("T0"), m = rows.column("m"), d = rows.column("d"),
-            g = rows.column("g"), T = rows.column("T"), transient = rows.column("transient"), seed = rows.column("seed"),
+  const RunColumns run(rows, "id");
+  const int T = rows.column("T"), transient = rows.column("transient"), seed = rows.column("seed"),
             dt_factor = rows.column("dt_factor"), tc = rows.column("tc"), n_coll = rows.column("n_coll"),
             n_coll_err = rows.column("n_coll_err"), wall = rows.column("wall_seconds"), cpu = rows.column("cpu_seconds"),
             stationary = rows.column("stationary"), key = rows.column("point_key"), replica = rows.column("replica");
@@ -34,18 +55,9 @@ std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection sel
   while (rows.next()) {
     SqlStatement& r = rows.row();
     StoredRun s;
-    s.id = r.column_int(id);
-    s.setup = r.column_text(setup);
-    s.engine.kind = engine_of(r.column_text(engine), s.id);
+    run.read(r, s.id, s.setup, s.engine.kind, s.params);
     s.engine.dt_factor = r.column_double(dt_factor);
     s.engine.hard.tc = r.column_double(tc);
-    s.params.N = static_cast<int>(r.column_int(N));
-    s.params.e = r.column_double(e);
-    s.params.k = r.column_double(k);
-    s.params.kT0 = r.column_double(T0);
-    s.params.m = r.column_double(m);
-    s.params.d = r.column_double(d);
-    s.params.g = r.column_double(g);
     s.T = r.column_double(T);
     s.transient = r.column_double(transient);
     s.seed = static_cast<std::uint64_t>(r.column_int(seed));
@@ -64,24 +76,14 @@ std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection sel
 std::vector<StoredProfile> read_profiles(const std::string& db_path, ExportSelection selection) {
   selection.table = ExportTable::Profiles;
   SelectedRows rows(db_path, selection);
-  const int id = rows.column("run_id"), setup = rows.column("setup"), engine = rows.column("engine"), N = rows.column("N"),
-            e = rows.column("e"), k = rows.column("k"), T0 = rows.column("T0"), m = rows.column("m"), d = rows.column("d"),
-            g = rows.column("g"), i = rows.column("i"), z_std = rows.column("z_std"), z_std_err = rows.column("z_std_err"),
-            K = rows.column("K_mean"), K_err = rows.column("K_err");
+  const RunColumns run(rows, "run_id");
+  const int i = rows.column("i"), z_std = rows.column("z_std"), z_std_err = rows.column("z_std_err"), K = rows.column("K_mean"),
+            K_err = rows.column("K_err");
   std::vector<StoredProfile> out;
   while (rows.next()) {
     SqlStatement& r = rows.row();
     StoredProfile p;
-    p.run_id = r.column_int(id);
-    p.setup = r.column_text(setup);
-    p.engine = engine_of(r.column_text(engine), p.run_id);
-    p.params.N = static_cast<int>(r.column_int(N));
-    p.params.e = r.column_double(e);
-    p.params.k = r.column_double(k);
-    p.params.kT0 = r.column_double(T0);
-    p.params.m = r.column_double(m);
-    p.params.d = r.column_double(d);
-    p.params.g = r.column_double(g);
+    run.read(r, p.run_id, p.setup, p.engine, p.params);
     p.i = static_cast<int>(r.column_int(i));
     p.z_std = r.column_double(z_std);
     p.z_std_err = r.column_double(z_std_err);
