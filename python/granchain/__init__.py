@@ -10,6 +10,7 @@ functions are the closed forms of src/theory; Store, export() and analyze() read
 compare_forms() and local_exponents() analyse a count against k. See docs/python.md.
 """
 
+import inspect as _inspect
 import sys as _sys
 
 from . import _granchain
@@ -44,9 +45,21 @@ from ._granchain import (  # noqa: F401  (the public API)
 from .store import Store, analyze, export  # noqa: F401
 
 
-def run(*, N=None, e=None, k=None, T0=None, T=None, transient=None, seed=None, engine=None,
-        dt_factor=None, tc=None, m=None, d=None, g=None, sample_interval=None, bins=None,
-        db=None, audit=False, progress=None):
+def _signature(table, extra):
+    """Keyword-only parameters: one per entry of a parameter table (None: the command's default),
+    then the function's own."""
+    keywords = [_inspect.Parameter(p["name"].replace("-", "_"), _inspect.Parameter.KEYWORD_ONLY, default=None)
+                for p in table]
+    keywords += [_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=value) for name, value in extra]
+    return _inspect.Signature(keywords)
+
+
+def _table_doc(title, table):
+    return f"\n    Parameters ({title}):\n" + "".join(
+        f"\n        {p['name'].replace('-', '_')}: {p['help']}" for p in table)
+
+
+def run(**kwargs):
     """Simulate the driven column once, as ``granchain run`` (None: the CLI's default).
 
     Returns a dict: parameters (dict), n_coll, n_coll_err, n_coll_blocks, n_coll_converged,
@@ -61,22 +74,18 @@ def run(*, N=None, e=None, k=None, T0=None, T=None, transient=None, seed=None, e
     --no-db; audit=True is --audit; progress=callable(dict) is called about every 0.5 s with t,
     t_total, in_transient, steps, events and wall_seconds. Ctrl-C stops a run (KeyboardInterrupt).
     Raises ValueError (bad input, the CLI's message), UnphysicalStateError, StoreError.
-
-    Parameters (the flags of ``granchain run``):
     """
-    args = dict(N=N, e=e, k=k, T0=T0, T=T, transient=transient, seed=seed, engine=engine,
-                dt_factor=dt_factor, tc=tc, m=m, d=d, g=g, sample_interval=sample_interval,
-                bins=bins, db=db, audit=audit, progress=progress)
-    return _granchain.run(**args)
+    run.__signature__.bind(**kwargs)  # TypeError for a keyword that is no parameter
+    return _granchain.run(**kwargs)
 
 
-run.__doc__ += "".join(f"\n        {p['name'].replace('-', '_')}: {p['help']}"
-                       for p in run_parameters() if p["name"] != "db")  # db: not stored unless given
+run.__signature__ = _signature([p for p in run_parameters() if p["name"] != "db"],
+                               [("db", None), ("audit", False), ("progress", None)])
+run.__doc__ += _table_doc("the flags of ``granchain run``; None or left out: the command's default",
+                          [p for p in run_parameters() if p["name"] != "db"])  # db: not stored unless given
 
 
-def collapse(*, N=3, e=0.03, k=None, engine="exact", setup="free", a=1.0, v0=1.0, dv0=0.1,
-             stop=None, realizations=1000, seed=1, threads=None, dt_factor=100.0, tc=None,
-             collapse_collisions=None, collapse_time=None, db=None, record_collisions=False):
+def collapse(**kwargs):
     """Count the collisions n_tot of an inelastic collapse at one (e, k), as ``granchain collapse``.
 
     N >= 2 spheres launched inward in free space (setup='free', Sec. III.D) or thrown against a
@@ -95,12 +104,10 @@ def collapse(*, N=3, e=0.03, k=None, engine="exact", setup="free", a=1.0, v0=1.0
     realization, collision, t_begin, t_end, i, j, speed_in, speed_out), stored, json.
     Raises ValueError (bad input, the CLI's message), UnphysicalStateError, StoreError.
     """
-    args = dict(N=N, e=e, k=k, engine=engine, setup=setup, a=a, v0=v0, dv0=dv0, stop=stop,
-                realizations=realizations, seed=seed, threads=threads, dt_factor=dt_factor, tc=tc,
-                collapse_collisions=collapse_collisions, collapse_time=collapse_time, db=db,
-                record_collisions=record_collisions)
-    return _granchain.collapse(**args)
+    collapse.__signature__.bind(**kwargs)  # TypeError for a keyword that is no parameter
+    return _granchain.collapse(**kwargs)
 
 
-collapse.__doc__ += "\n    Parameters (the flags of ``granchain collapse``, one e and one k per call):\n" + "".join(
-    f"\n        {p['name'].replace('-', '_')}: {p['help']}" for p in collapse_parameters())
+collapse.__signature__ = _signature(collapse_parameters(), [("db", None), ("record_collisions", False)])
+collapse.__doc__ += _table_doc("the flags of ``granchain collapse``, one e and one k per call; None or left out: "
+                               "the command's default", collapse_parameters())
