@@ -10,7 +10,7 @@
 
 #include "cli/interrupt_message.hpp"
 #include "cli/subcommand.hpp"
-#include "config/exit_codes.hpp"
+#include "cli/exit_codes.hpp"
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
 #include "provenance.hpp"
@@ -23,7 +23,7 @@ namespace granchain {
 
 namespace {
 
-// The exit code of a figure's end (config/exit_codes.hpp).
+// The exit code of a figure's end (cli/exit_codes.hpp).
 int exit_code(FigureStatus status) {
   switch (status) {
     case FigureStatus::Done: return kExitOk;

@@ -5,7 +5,7 @@
 
 #include <functional>
 
-#include "config/exit_codes.hpp"
+#include "cli/exit_codes.hpp"
 
 namespace granchain {
 

@@ -1,6 +1,7 @@
 #pragma once
-// Exit codes of the command line, shared by the layers that decide them (a figure whose points
-// failed reports kExitUnphysical).
+// Exit codes of the command line. Only cli/ turns outcomes and errors into them; the layers below
+// return outcomes (a figure's FigureStatus) or throw typed errors (InputError, StoreError,
+// UnphysicalStateError, OutputError).
 namespace granchain {
 
 enum ExitCode : int {
