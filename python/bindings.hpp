@@ -14,11 +14,6 @@ namespace granchain::python {
 
 namespace py = pybind11;
 
-// A keyword argument as the text a command-line flag would carry: a str as given, an integer in
-// decimal, a float in Python's shortest round-trip form (so "1e6" and 1e6 parse to the same
-// double), anything else as str(value) (which validation then refuses with the CLI's message).
-std::string flag_text(const py::handle& value);
-
 // A keyword argument as a typed value (config/parameter.hpp): a Python int (or anything with
 // __index__) as an integer, a float (or anything with __float__) as a real number, a str as
 // text; True and False, and integers beyond 64 bits, as their text, which every numeric parameter

@@ -1,22 +1,9 @@
-// Keyword arguments read as command-line text (bindings.hpp).
+// Keyword arguments as typed values, parameter tables as dicts (bindings.hpp).
 #include <fmt/format.h>
 
 #include "bindings.hpp"
 
 namespace granchain::python {
-
-std::string flag_text(const py::handle& value) {
-  PyObject* v = value.ptr();
-  if (PyUnicode_Check(v)) return value.cast<std::string>();
-  if (PyBool_Check(v)) return py::str(value);  // "True": refused by every numeric parameter
-  if (PyIndex_Check(v)) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(v)));
-  if (PyFloat_Check(v) || PyObject_HasAttrString(v, "__float__")) {
-    PyObject* f = PyNumber_Float(v);
-    if (f != nullptr) return py::repr(py::reinterpret_steal<py::object>(f));
-    PyErr_Clear();
-  }
-  return py::str(value);
-}
 
 RawValue keyword_value(const py::handle& value) {
   PyObject* v = value.ptr();

@@ -19,10 +19,14 @@ int all_cores() { return static_cast<int>(std::max(1u, std::thread::hardware_con
 
 }  // namespace
 
-// Sec. III.D of the paper (free space) and Sec. II.C (a wall); no gravity, m = d = 1.
+// Sec. III.D of the paper (free space) and Sec. II.C (a wall); no gravity, m = d = 1. The defaults
+// of N, e, k, engine and setup are the command's own (its fallback texts, which
+// resolve_collapse_options reads); the others are CollapseSpec's (simulation/collapse_run.hpp).
 const std::vector<Parameter>& collapse_parameters() {
   static const std::vector<Parameter> table = [] {
-    const HardSphereOptions hard;
+    const CollapseSpec def;
+    const HardSphereOptions& hard = def.engine.hard;
+    const auto shown = [](double x) { return fmt::format("{:g}", x); };
     const unsigned c = kUseCollapse | kUsePython;
     using T = ParameterType;
     std::vector<Parameter> t;
@@ -30,37 +34,39 @@ const std::vector<Parameter>& collapse_parameters() {
                  [](double x) { return x >= 2 && x <= 100000; }});
     t.push_back({"e", T::RealList, "", "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1)", "0 < e <= 1", "0.03", c,
                  EngineScope::Any, false, "e", [](double x) { return x > 0 && x <= 1; }});
-    t.push_back({"k", T::RealList, "m v0^2 / d^2", "elastic constants: a list or range (1e4:1e12:x10)", "k > 0",
-                 "1e4:1e10:x10 (not with --engine hard, whose k is infinite)", c, EngineScope::Soft, false, "k",
-                 [](double x) { return x > 0; }});
+    t.push_back({"k", T::RealList, "m v0^2 / d^2", "elastic constants: a list or range (1e4:1e12:x10; not with --engine hard, whose k is infinite)",
+                 "k > 0", "1e4:1e10:x10", c, EngineScope::Soft, false, "k", [](double x) { return x > 0; },
+                 "the hard-sphere engine has k = infinity"});
     t.push_back({"engine", T::Name, "", "time integrator", "one of: " + engine_name_list() + " (reference engines: dt = tau_c/dt-factor; hard: k = infinity)",
                  std::string(engines().front().name), c, EngineScope::Any, false, "engine", {}});
     t.push_back({"setup", T::Name, "", "where the launch plays out: free space (Sec. III.D), or a wall of restitution e that "
                  "Bernu-Mazighi spheres are thrown against (Sec. II.C)", "free or wall", "free", c, EngineScope::Any, false, "setup", {}});
-    t.push_back({"a", T::Real, "d", "initial space between neighbours (and particle 1 and the wall)", "a >= 0", "1", c, EngineScope::Any,
+    t.push_back({"a", T::Real, "d", "initial space between neighbours (and particle 1 and the wall)", "a >= 0", shown(def.launch.a), c, EngineScope::Any,
                  false, "a", [](double x) { return x >= 0; }});
-    t.push_back({"v0", T::Real, "", "launch speed (inward in free space, toward the wall)", "v0 > 0", "1", c, EngineScope::Any, false, "v0",
+    t.push_back({"v0", T::Real, "", "launch speed (inward in free space, toward the wall)", "v0 > 0", shown(def.launch.v0), c, EngineScope::Any, false, "v0",
                  [](double x) { return x > 0; }});
-    t.push_back({"dv0", T::Real, "v0", "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1)", "dv0 >= 0", "0.1", c,
+    t.push_back({"dv0", T::Real, "v0", "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1)", "dv0 >= 0", shown(def.launch.dv0), c,
                  EngineScope::Any, false, "dv0", [](double x) { return x >= 0; }});
     t.push_back({"stop", T::Name, "", "stop rule: ends (the paper's, free space only) or strict (no pair approaches)", "ends or strict", "ends in free space, strict on a wall",
                  c, EngineScope::Any, false, "stop_rule", {}});
     t.push_back({"realizations", T::Integer, "", "random launches per (e, k) (two for an error bar)", "integer 2 <= realizations <= 10000000",
-                 "1000", c, EngineScope::Any, false, "realizations", [](double x) { return x >= 2 && x <= 10000000; }});
+                 shown(def.realizations), c, EngineScope::Any, false, "realizations", [](double x) { return x >= 2 && x <= 10000000; }});
     t.push_back({"seed", T::Integer, "", "base seed; launch r uses derive_seed(seed, r), the same at every e and k",
-                 "integer 0 <= seed <= 9223372036854775807", "1", c, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }});
+                 "integer 0 <= seed <= 9223372036854775807", shown(static_cast<double>(def.seed)), c, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }});
     t.push_back({"threads", T::Integer, "", "threads over launches (results do not depend on it)", "integer 1 <= threads <= 1024",
                  "all cores", c, EngineScope::Any, false, "", [](double x) { return x >= 1 && x <= 1024; }});
-    t.push_back({"dt-factor", T::Real, "", "reference engines: dt = tau_c / dt-factor", "10 <= dt-factor <= 1e6", "100", c,
+    t.push_back({"dt-factor", T::Real, "", "reference engines: dt = tau_c / dt-factor", "10 <= dt-factor <= 1e6", shown(def.engine.dt_factor), c,
                  EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }});
-    t.push_back({"tc", T::Real, "d / v0", "hard engine: TC model time t_c (a collision within t_c of a particle's previous one is elastic)",
-                 "tc = 0 (off) or tc >= collapse-time", "0 (off)", c, EngineScope::Hard, false, "tc", [](double x) { return x >= 0; }});
+    t.push_back({"tc", T::Real, "d / v0",
+                 "hard engine: TC model time t_c (a collision within t_c of a particle's previous one is elastic; 0: off)",
+                 "tc = 0 (off) or tc >= collapse-time", shown(hard.tc), c, EngineScope::Hard, false, "tc",
+                 [](double x) { return x >= 0; }, "the TC model"});
     t.push_back({"collapse-collisions", T::Integer, "",
                  "hard engine: collapse when this many consecutive collisions fit in --collapse-time (each launch keeps that many collision times)",
-                 "integer 2 <= collapse-collisions <= 10000000", fmt::format("{}", hard.collapse_collisions), c, EngineScope::Hard, false, "",
-                 [](double x) { return x >= 2 && x <= 10000000; }});
+                 "integer 2 <= collapse-collisions <= 10000000", shown(static_cast<double>(hard.collapse_collisions)), c, EngineScope::Hard,
+                 false, "", [](double x) { return x >= 2 && x <= 10000000; }, "the collapse watch"});
     t.push_back({"collapse-time", T::Real, "d / v0", "hard engine: see --collapse-collisions", "collapse-time > 0",
-                 fmt::format("{:g}", hard.collapse_time), c, EngineScope::Hard, false, "", [](double x) { return x > 0; }});
+                 shown(hard.collapse_time), c, EngineScope::Hard, false, "", [](double x) { return x > 0; }, "the collapse watch"});
     return t;
   }();
   return table;
@@ -102,55 +108,52 @@ CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& 
     if (find_parameter(table, name) == nullptr)
       throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", name, from_where(value), parameter_names(table)));
   const auto given = [&](const char* name) { return raw.count(name) > 0; };
-  const auto value = [&](const char* name, RawValue dflt) { return given(name) ? raw.at(name) : dflt; };
   const auto param = [&](const char* name) -> const Parameter& { return *find_parameter(table, name); };
+  // As given, or the table's default.
+  const auto value = [&](const char* name) { return given(name) ? raw.at(name) : RawValue{param(name).fallback}; };
   const auto integer = [&](const char* name, long long dflt) { return given(name) ? read_integer(param(name), raw.at(name)) : dflt; };
   const auto real = [&](const char* name, double dflt) { return given(name) ? read_real(param(name), raw.at(name)) : dflt; };
 
   CollapseOptions o;
   CollapseSpec& s = o.base;
-  s.params.N = static_cast<int>(integer("N", 3));
-  s.realizations = static_cast<int>(integer("realizations", 1000));
-  s.seed = static_cast<std::uint64_t>(integer("seed", 1));
+  s.params.N = static_cast<int>(read_integer(param("N"), value("N")));
+  s.realizations = static_cast<int>(integer("realizations", s.realizations));
+  s.seed = static_cast<std::uint64_t>(integer("seed", static_cast<long long>(s.seed)));
   s.threads = static_cast<int>(integer("threads", all_cores()));
-  const long long collapse_collisions = integer("collapse-collisions", HardSphereOptions{}.collapse_collisions);
-  o.es = read_real_list(param("e"), value("e", "0.03"));
+  s.engine.hard.collapse_collisions =
+      static_cast<std::uint64_t>(integer("collapse-collisions", static_cast<long long>(s.engine.hard.collapse_collisions)));
+  o.es = read_real_list(param("e"), value("e"));
 
-  const RawValue engine_value = value("engine", std::string(engines().front().name));
+  const RawValue engine_value = value("engine");
   const std::string engine_text = read_name(param("engine"), engine_value);
   const EngineInfo* engine = find_engine(engine_text);
   if (engine == nullptr)
     throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", engine_text, from_where(engine_value), engine_name_list()));
   const bool hard = engine->hard_spheres;
-  if (hard) {
-    if (given("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
-    o.ks = {std::numeric_limits<double>::infinity()};
-  } else {
-    o.ks = read_real_list(param("k"), value("k", "1e4:1e10:x10"));
-    if (given("tc")) throw InputError("--tc: the TC model belongs to --engine hard");
-  }
+  check_engine_scope(table, raw, *engine);
+  o.ks = hard ? std::vector<double>{std::numeric_limits<double>::infinity()} : read_real_list(param("k"), value("k"));
 
-  const std::string setup = read_name(param("setup"), value("setup", "free"));
+  const std::string setup = read_name(param("setup"), value("setup"));
   if (setup != "free" && setup != "wall") throw InputError(fmt::format("--setup = '{}'; valid: free, wall", setup));
   s.setup = setup == "free" ? CollapseSetup::FreeSpace : CollapseSetup::Wall;
-  s.launch.a = real("a", 1.0);
-  s.launch.v0 = real("v0", 1.0);
+  s.launch.a = real("a", s.launch.a);
+  s.launch.v0 = real("v0", s.launch.v0);
   s.params.g = 0.0;
   check_launch(s.params.N, s.launch.a, s.launch.v0, s.params.d);
   if (!hard)
     for (double e : o.es)
       for (double k : o.ks) check_contact_time(k, e, s.params.m, s.params.d, s.params.N, s.launch.a, s.launch.v0, engine->fine_clock);
-  const std::string stop = read_name(param("stop"), value("stop", s.setup == CollapseSetup::FreeSpace ? "ends" : "strict"));
+  const std::string stop = given("stop") ? read_name(param("stop"), raw.at("stop"))
+                                         : s.setup == CollapseSetup::FreeSpace ? "ends" : "strict";
   if (stop != "ends" && stop != "strict") throw InputError(fmt::format("--stop = '{}'; valid: ends, strict", stop));
   s.rule = stop == "ends" ? StopRule::Ends : StopRule::Strict;
   if (s.rule == StopRule::Ends && s.setup == CollapseSetup::Wall)
     throw InputError("--stop = ends compares the end particles in free space; on a wall use --stop strict");
-  s.launch.dv0 = real("dv0", 0.1);
+  s.launch.dv0 = real("dv0", s.launch.dv0);
   s.engine.kind = engine->kind;
-  s.engine.dt_factor = real("dt-factor", 100.0);
-  s.engine.hard.tc = real("tc", 0.0);
-  s.engine.hard.collapse_collisions = static_cast<std::uint64_t>(collapse_collisions);
-  s.engine.hard.collapse_time = real("collapse-time", HardSphereOptions{}.collapse_time);
+  s.engine.dt_factor = real("dt-factor", s.engine.dt_factor);
+  s.engine.hard.tc = real("tc", s.engine.hard.tc);
+  s.engine.hard.collapse_time = real("collapse-time", s.engine.hard.collapse_time);
   // The TC time acts on collisions within t_c of one another; the collapse watch spans
   // collapse-time: t_c = 0 (off) or t_c >= collapse-time (see the driven column's tc).
   if (!(s.engine.hard.tc == 0 || s.engine.hard.tc >= s.engine.hard.collapse_time))
@@ -161,8 +164,6 @@ CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& 
   if (launches > 1e9)
     throw InputError(fmt::format("--realizations = {}: {} values of e times {} of k times the launches is {:.3g}; valid range: "
                                  "at most 1e9 launches in one command", s.realizations, o.es.size(), o.ks.size(), launches));
-  if (!hard && (given("collapse-collisions") || given("collapse-time")))
-    throw InputError("--collapse-collisions, --collapse-time: the collapse watch belongs to --engine hard");
   return o;
 }
 

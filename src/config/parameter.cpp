@@ -8,6 +8,7 @@
 
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
+#include "engines/engine_registry.hpp"
 
 namespace granchain {
 
@@ -23,6 +24,29 @@ std::string strip(const std::string& s) {
 }
 
 const std::string* text_of(const RawValue& v) { return std::get_if<std::string>(&v.value); }
+
+// The value as a finite number (text read strictly, whole), before any range check.
+double finite_number(const Parameter& p, const RawValue& v) {
+  double x = 0;
+  if (const auto* raw = text_of(v)) {
+    const std::string t = strip(*raw);
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+    if (!t.empty() && ec == std::errc::result_out_of_range && end == t.data() + t.size())  // beyond a double, or below its least
+      throw InputError(fmt::format("--{} = '{}'{} is out of range: {}; valid range: {}", p.name, *raw, from_where(v),
+                                   std::abs(std::strtod(t.c_str(), nullptr)) > 1 ? "larger than the largest double"
+                                                                                 : "smaller than the least positive double",
+                                   p.range));
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size())
+      throw InputError(fmt::format("--{} = '{}'{} is not a number; valid range: {}", p.name, *raw, from_where(v), p.range));
+  } else if (const auto* i = std::get_if<long long>(&v.value)) {
+    x = static_cast<double>(*i);
+  } else {
+    x = std::get<double>(v.value);
+  }
+  if (!std::isfinite(x))
+    throw InputError(fmt::format("--{} = '{}'{} is not finite; valid range: {}", p.name, v.text(), from_where(v), p.range));
+  return x;
+}
 
 }  // namespace
 
@@ -52,32 +76,13 @@ std::string Parameter::type_name() const {
     case ParameterType::Real: return "REAL";
     case ParameterType::Name: return "NAME";
     case ParameterType::Path: return "PATH";
-    case ParameterType::RealList:
-    case ParameterType::NameList: return "LIST";
+    case ParameterType::RealList: return "LIST";
   }
   return "";
 }
 
-// A strict real number: the whole text must be a number, and it must be finite.
 double read_real(const Parameter& p, const RawValue& v) {
-  double x = 0;
-  if (const auto* raw = text_of(v)) {
-    const std::string t = strip(*raw);
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-    if (!t.empty() && ec == std::errc::result_out_of_range && end == t.data() + t.size())  // beyond a double, or below its least
-      throw InputError(fmt::format("--{} = '{}'{} is out of range: {}; valid range: {}", p.name, *raw, from_where(v),
-                                   std::abs(std::strtod(t.c_str(), nullptr)) > 1 ? "larger than the largest double"
-                                                                                 : "smaller than the least positive double",
-                                   p.range));
-    if (t.empty() || ec != std::errc() || end != t.data() + t.size())
-      throw InputError(fmt::format("--{} = '{}'{} is not a number; valid range: {}", p.name, *raw, from_where(v), p.range));
-  } else if (const auto* i = std::get_if<long long>(&v.value)) {
-    x = static_cast<double>(*i);
-  } else {
-    x = std::get<double>(v.value);
-  }
-  if (!std::isfinite(x))
-    throw InputError(fmt::format("--{} = '{}'{} is not finite; valid range: {}", p.name, v.text(), from_where(v), p.range));
+  const double x = finite_number(p, v);
   if (p.valid && !p.valid(x)) value_out_of_range(p.name, v, p.range);
   return x;
 }
@@ -111,9 +116,9 @@ std::vector<double> read_real_list(const Parameter& p, const RawValue& v) {
   if (const auto* raw = text_of(v)) {
     xs = parse_value_list(*raw, "--" + p.name + from_where(v));
   } else {
-    xs = {read_real(Parameter{p.name, ParameterType::Real, "", "", p.range, "", 0, EngineScope::Any, false, "", {}}, v)};
+    xs = {finite_number(p, v)};
   }
-  for (double x : xs)
+  for (double x : xs)  // a list's message names the value: "--e: 2 is out of range"
     if (!std::isfinite(x) || (p.valid && !p.valid(x)))
       throw InputError(fmt::format("--{}: {}{} is out of range; valid range: {}", p.name, x, from_where(v), p.range));
   return xs;
@@ -123,6 +128,16 @@ std::string rounded_bound(double x, bool upper) {
   if (!(x > 0) || !std::isfinite(x)) return fmt::format("{:.3g}", x);
   const double unit = std::pow(10.0, std::floor(std::log10(x)) - 2);
   return fmt::format("{:.3g}", (upper ? std::floor(x / unit) : std::ceil(x / unit)) * unit);
+}
+
+void check_engine_scope(const std::vector<Parameter>& table, const std::map<std::string, RawValue>& raw, const EngineInfo& engine) {
+  for (const Parameter& p : table) {
+    if (!raw.count(p.name)) continue;
+    if (p.engines == EngineScope::Soft && engine.hard_spheres)
+      throw InputError(fmt::format("--{}: {}; leave --{} out", p.name, p.scope_note, p.name));
+    if (p.engines == EngineScope::Hard && !engine.hard_spheres)
+      throw InputError(fmt::format("--{}: {} belongs to --engine hard", p.name, p.scope_note));
+  }
 }
 
 const Parameter* find_parameter(const std::vector<Parameter>& table, const std::string& name) {

@@ -5,15 +5,15 @@
 // keeps it. The tables of the driven column (run_options.cpp) and of the collapse count
 // (collapse_options.cpp) are lists of these; the command line's flags and help, the config files,
 // the Python keywords, the sweep axes and the messages of bad input all read them.
-#include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <variant>
 #include <vector>
 
 namespace granchain {
 
-enum class ParameterType { Integer, Real, Name, Path, RealList, NameList };
+enum class ParameterType { Integer, Real, Name, Path, RealList };
 
 // The commands that take a parameter (a bit set).
 enum ParameterUse : unsigned {
@@ -25,8 +25,11 @@ enum ParameterUse : unsigned {
 };
 constexpr unsigned kUseDriven = kUseRun | kUseSweep | kUsePython;  // `trace` takes those marked kUseTrace too
 
-// The engines that take a parameter.
+// The engines that take a parameter. A Soft or Hard parameter given for another engine is refused
+// (check_engine_scope); a TimeStepped one is ignored by the event-driven engines.
 enum class EngineScope { Any, Soft, Hard, TimeStepped };
+
+struct EngineInfo;
 
 // A value as it arrives: text (a flag, a list such as "1e4:1e10:x10"), or already typed (a
 // Python int or float). `source` says where it came from for messages: "" for the command line,
@@ -52,7 +55,7 @@ std::string real_text(double x);
 struct Parameter {
   std::string name;
   ParameterType type = ParameterType::Real;
-  std::string unit;     // "" for pure numbers; else in the units of m, d, g (docs/cli.md)
+  std::string unit;     // "" for pure numbers; else in units made of m, d and g (d and v0 for a collapse)
   std::string meaning;  // what it is
   std::string range;    // the valid range as messages print it ("0 < e <= 1")
   std::string fallback; // the default as help prints it ("0.9", "T/10")
@@ -62,6 +65,9 @@ struct Parameter {
   std::string store_column;  // the column of the store's runs / collapse_runs table that keeps it ("" none)
   // Numbers: the value must satisfy this (range says which).
   std::function<bool(double)> valid;
+  // Soft or Hard scope: why another engine refuses it ("the hard-sphere engine has k = infinity",
+  // "the TC model"), for check_engine_scope's message.
+  std::string scope_note = "";
 
   // "meaning; range; default D" for --help.
   std::string help() const;
@@ -85,6 +91,11 @@ std::string from_where(const RawValue& v);
 // x to 3 significant digits, rounded into the valid range (down for an upper bound), for the
 // bound a message prints.
 std::string rounded_bound(double x, bool upper);
+
+// The first parameter of `table` in `raw` that `engine` does not take (EngineScope Soft with the
+// hard-sphere engine, Hard with a soft one) is refused: "--k: the hard-sphere engine has k =
+// infinity; leave --k out", "--tc: the TC model belongs to --engine hard".
+void check_engine_scope(const std::vector<Parameter>& table, const std::map<std::string, RawValue>& raw, const EngineInfo& engine);
 
 // The entry called `name` in `table`, or nullptr.
 const Parameter* find_parameter(const std::vector<Parameter>& table, const std::string& name);

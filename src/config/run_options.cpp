@@ -47,18 +47,23 @@ Definition late_real(Parameter p) {
 // The driven column's parameters (Sec. II of the paper; units m = d = g = 1 unless set).
 const std::vector<Definition>& definitions() {
   static const std::vector<Definition> defs = [] {
-    const HardSphereOptions hard;
+    // The defaults are those of RunOptions (model/chain_parameters.hpp, simulation/driven_run.hpp,
+    // engines/engine_registry.hpp), shown in the help as they are.
+    const RunOptions def;
+    const HardSphereOptions& hard = def.spec.engine.hard;
+    const auto shown = [](double x) { return fmt::format("{:g}", x); };
     std::vector<Definition> d;
-    d.push_back(integer({"N", {}, "", "number of particles", "integer 1 <= N <= 100000", "25", kUseDriven | kUseTrace, EngineScope::Any, true, "N",
+    d.push_back(integer({"N", {}, "", "number of particles", "integer 1 <= N <= 100000", shown(def.spec.params.N), kUseDriven | kUseTrace, EngineScope::Any, true, "N",
                          [](double x) { return x >= 1 && x <= 100000; }},
                         [](RunOptions& o, long long n) { o.spec.params.N = static_cast<int>(n); }));
-    d.push_back(real({"e", {}, "", "restitution coefficient of a binary collision", "0 < e <= 1", "0.9", kUseDriven | kUseTrace, EngineScope::Any, true,
+    d.push_back(real({"e", {}, "", "restitution coefficient of a binary collision", "0 < e <= 1", shown(def.spec.params.e), kUseDriven | kUseTrace, EngineScope::Any, true,
                       "e", [](double x) { return x > 0 && x <= 1; }},
                      [](RunOptions& o, double x) { o.spec.params.e = x; }));
-    d.push_back(real({"k", {}, "m g / d", "elastic constant of the spring (hard-sphere limit: k -> infinity at fixed e)", "k > 0", "1e5",
-                      kUseDriven | kUseTrace, EngineScope::Soft, true, "k", [](double x) { return x > 0; }},
+    d.push_back(real({"k", {}, "m g / d", "elastic constant of the spring (hard-sphere limit: k -> infinity at fixed e)", "k > 0",
+                      shown(def.spec.params.k), kUseDriven | kUseTrace, EngineScope::Soft, true, "k", [](double x) { return x > 0; },
+                      "the hard-sphere engine has k = infinity"},
                      [](RunOptions& o, double x) { o.spec.params.k = x; }));
-    d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0", "T0 > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, true,
+    d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0", "T0 > 0", shown(def.spec.params.kT0), kUseDriven | kUseTrace, EngineScope::Any, true,
                       "T0", [](double x) { return x > 0; }},
                      [](RunOptions& o, double x) { o.spec.params.kT0 = x; }));
     d.push_back(late_real({"T", {}, "sqrt(d / g)", "measuring time (window after the transient)", "T > 0",
@@ -66,7 +71,8 @@ const std::vector<Definition>& definitions() {
                            [](double x) { return x > 0; }}));
     d.push_back(late_real({"transient", {}, "sqrt(d / g)", "discarded time before the measuring window", "transient >= 0", "T/10",
                            kUseDriven, EngineScope::Any, false, "transient", [](double x) { return x >= 0; }}));
-    d.push_back(integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807", "1",
+    d.push_back(integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807",
+                         shown(static_cast<double>(def.spec.seed)),
                          kUseDriven | kUseTrace, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }},
                         [](RunOptions& o, long long s) { o.spec.seed = static_cast<std::uint64_t>(s); }));
     {
@@ -82,7 +88,8 @@ const std::vector<Definition>& definitions() {
                      throw InputError(fmt::format("--engine = '{}'{} is not an engine; valid: {}", v.text(), from_where(v), names));
                    }});
     }
-    d.push_back(real({"dt-factor", {}, "", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6", "100",
+    d.push_back(real({"dt-factor", {}, "", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6",
+                      shown(def.spec.engine.dt_factor),
                       kUseDriven | kUseTrace, EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }},
                      [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
     // The hard engine declares an inelastic collapse when collapse_collisions (1000) collisions
@@ -95,23 +102,23 @@ const std::vector<Definition>& definitions() {
                       fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
                                   "a shorter t_c leaves them inelastic)",
                                   hard.collapse_time, hard.collapse_collisions, hard.collapse_time),
-                      "0", kUseDriven, EngineScope::Hard, false, "tc",
-                      [min = hard.collapse_time](double x) { return x == 0 || x >= min; }},
+                      shown(hard.tc), kUseDriven, EngineScope::Hard, false, "tc",
+                      [min = hard.collapse_time](double x) { return x == 0 || x >= min; }, "the TC model"},
                      [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
-    d.push_back(real({"m", {}, "", "particle mass (unit of mass)", "m > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "m",
+    d.push_back(real({"m", {}, "", "particle mass (unit of mass)", "m > 0", shown(def.spec.params.m), kUseDriven | kUseTrace, EngineScope::Any, false, "m",
                       [](double x) { return x > 0; }},
                      [](RunOptions& o, double x) { o.spec.params.m = x; }));
-    d.push_back(real({"d", {}, "", "particle diameter (unit of length)", "d > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "d",
+    d.push_back(real({"d", {}, "", "particle diameter (unit of length)", "d > 0", shown(def.spec.params.d), kUseDriven | kUseTrace, EngineScope::Any, false, "d",
                       [](double x) { return x > 0; }},
                      [](RunOptions& o, double x) { o.spec.params.d = x; }));
-    d.push_back(real({"g", {}, "", "gravitational acceleration", "g > 0", "1", kUseDriven | kUseTrace, EngineScope::Any, false, "g",
+    d.push_back(real({"g", {}, "", "gravitational acceleration", "g > 0", shown(def.spec.params.g), kUseDriven | kUseTrace, EngineScope::Any, false, "g",
                       [](double x) { return x > 0; }},
                      [](RunOptions& o, double x) { o.spec.params.g = x; }));
     d.push_back(real({"sample-interval", {}, "sqrt(d / g)",
                       "time between profile samples (rounded to whole engine steps); 16 to 1e10 samples in T, at least 1e6 clock resolutions",
-                      "sample-interval > 0", "0.01", kUseDriven, EngineScope::Any, false, "sample_interval", [](double x) { return x > 0; }},
+                      "sample-interval > 0", shown(def.spec.sample_interval), kUseDriven, EngineScope::Any, false, "sample_interval", [](double x) { return x > 0; }},
                      [](RunOptions& o, double x) { o.spec.sample_interval = x; }));
-    d.push_back(integer({"bins", {}, "", "time bins for the blocking error analysis", "power of two, 16 <= bins <= 65536", "1024",
+    d.push_back(integer({"bins", {}, "", "time bins for the blocking error analysis", "power of two, 16 <= bins <= 65536", shown(def.spec.bins),
                          kUseDriven, EngineScope::Any, false, "bins",
                          [](double x) {
                            const auto b = static_cast<long long>(x);
@@ -119,7 +126,7 @@ const std::vector<Definition>& definitions() {
                          }},
                         [](RunOptions& o, long long b) { o.spec.bins = static_cast<int>(b); }));
     d.push_back({{"db", ParameterType::Path, "", "results store (SQLite file), created if missing", "a file name",
-                  "granchain.db in the working folder", kUseRun | kUseSweep | kUsePython, EngineScope::Any, false, "", {}},
+                  def.db_path + " in the working folder", kUseRun | kUseSweep | kUsePython, EngineScope::Any, false, "", {}},
                  [](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
                    const std::string path = read_name(q, v);
                    if (path.empty()) throw InputError("--db: the path is empty; give a file name");
@@ -264,12 +271,8 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
     if (!known)
       throw InputError(fmt::format("unknown parameter '{}'{}; known: {}", key, from_where(value), parameter_names(run_parameters())));
   }
-  if (engine_info(o.spec.engine.kind).hard_spheres) {
-    if (raw.count("k")) throw InputError("--k: the hard-sphere engine has k = infinity; leave --k out");
-    o.spec.params.k = std::numeric_limits<double>::infinity();
-  } else if (raw.count("tc")) {
-    throw InputError("--tc: the TC model belongs to --engine hard");
-  }
+  check_engine_scope(run_parameters(), raw, engine_info(o.spec.engine.kind));
+  if (engine_info(o.spec.engine.kind).hard_spheres) o.spec.params.k = std::numeric_limits<double>::infinity();
   o.spec.T = late.count("T") ? late["T"] : default_measuring_time(o.spec.params.N);
   o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;
   check_contact_time(o, raw);
