@@ -30,24 +30,21 @@ py::dict estimate_halves(const StationarityCheck& c) {
   return d;
 }
 
+// The set-up and every stored parameter of the table (config/run_options.hpp) under its store
+// column's name; k is inf for the hard-sphere engine.
 py::dict spec_dict(const RunSpec& s) {
   py::dict p;
   p["setup"] = "driven_column";
-  p["N"] = s.params.N;
-  p["e"] = s.params.e;
-  p["k"] = s.params.k;  // inf for the hard-sphere engine
-  p["T0"] = s.params.kT0;
-  p["m"] = s.params.m;
-  p["d"] = s.params.d;
-  p["g"] = s.params.g;
-  p["T"] = s.T;
-  p["transient"] = s.transient;
-  p["seed"] = s.seed;
-  p["engine"] = engine_name(s.engine.kind);
-  p["dt_factor"] = s.engine.dt_factor;
-  p["sample_interval"] = s.sample_interval;
-  p["bins"] = s.bins;
-  p["tc"] = s.engine.hard.tc;
+  const auto& stored = stored_run_parameters();
+  const auto values = stored_values(s);
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    const Parameter& q = *stored[i].parameter;
+    const TypedValue& v = values[i].value;
+    const py::str key(q.store_column);
+    if (const auto* t = std::get_if<std::string>(&v)) p[key] = *t;
+    else if (const auto* n = std::get_if<long long>(&v)) p[key] = unsigned_integer(q) ? py::int_(static_cast<std::uint64_t>(*n)) : py::int_(*n);
+    else p[key] = std::get<double>(v);
+  }
   return p;
 }
 

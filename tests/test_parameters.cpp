@@ -9,7 +9,7 @@
 #include "config/collapse_options.hpp"
 #include "config/input_error.hpp"
 #include "config/run_options.hpp"
-#include "simulation/run_key.hpp"
+#include "config/run_key.hpp"
 #include "sweep/sweep_grid.hpp"
 
 using namespace granchain;

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "config/input_error.hpp"
-#include "simulation/run_key.hpp"
+#include "config/run_key.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
 #include "store/store_export.hpp"

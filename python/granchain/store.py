@@ -1,13 +1,11 @@
 """Reading a granchain results store (docs/results-store.md) into numpy.
 
-The rows are those of ``granchain export`` with the same filters: the store is opened read-only
-and the C++ export (src/store/store_export.hpp) selects them. Its JSON form tells each column's
-type (integer, real or text) and its CSV form carries every real exactly, infinities included
-(k = inf for hard spheres), so a column comes back as int64, float64 (NULL as nan), or str.
+The rows are those of ``granchain export`` with the same filters: the store is opened read-only,
+the C++ export's selection (src/store/store_export.hpp) reads them in one statement, and each
+column comes back typed by the values the store holds: int64, float64 (NULL as nan; k = inf for
+hard spheres), or str. No text lies in between.
 """
 
-import csv
-import io
 import json
 import numbers
 
@@ -41,36 +39,6 @@ def _names(value):
     return [str(v) for v in value]
 
 
-def _column(name, json_rows, csv_rows, j):
-    """One column as a numpy array, typed by the JSON values, reals read from the CSV text."""
-    vals = [row[name] for row in json_rows]
-    kinds = {type(v) for v in vals if v is not None}
-    if str in kinds:
-        return np.array(["" if v is None else str(v) for v in vals], dtype=str)
-    if float in kinds:
-        return np.array([float(r[j]) if r[j] != "" else np.nan for r in csv_rows], dtype=float)
-    if kinds == {int}:
-        if None not in vals:
-            return np.array(vals, dtype=np.int64)
-        if all(v is None or abs(v) < 2**53 for v in vals):
-            return np.array([np.nan if v is None else float(v) for v in vals], dtype=float)
-        return np.array(vals, dtype=object)  # large integers with NULLs: exact, None for NULL
-    return np.full(len(vals), np.nan)  # all NULL (or no rows)
-
-
-def _read(db, table, values, engines, where):
-    for _ in range(3):
-        rows = json.loads(_granchain._export_text(db, table, "json", values, engines, where))
-        reader = csv.reader(io.StringIO(_granchain._export_text(db, table, "csv", values, engines, where)))
-        header = next(reader)
-        # Rows stored between the two reads come last (ordered by id); they are left out.
-        body = [r for _, r in zip(range(len(rows)), reader)]
-        key = header[0]
-        if len(body) == len(rows) and all(str(a[key]) == b[0] for a, b in zip(rows, body)):
-            return header, rows, body
-    raise RuntimeError(f"the store {db} kept changing while it was read; try again")
-
-
 def export(db, table="runs", *, N=None, e=None, k=None, T0=None, T=None, engine=None, where=None,
            as_dict=False):
     """Rows of a results store, as ``granchain export --db DB --table TABLE`` selects them.
@@ -92,11 +60,11 @@ def export(db, table="runs", *, N=None, e=None, k=None, T0=None, T=None, engine=
     for name, v in (("N", N), ("e", e), ("k", k), ("T0", T0), ("T", T)):
         if v is not None:
             values[name] = _values(v, name)
-    header, rows, body = _read(db, table, values, _names(engine), where or "")
-    columns = {name: _column(name, rows, body, j) for j, name in enumerate(header)}
+    columns = dict(_granchain._read_columns(db, table, values, _names(engine), where or ""))
     if as_dict:
         return columns
-    out = np.empty(len(rows), dtype=[(name, a.dtype) for name, a in columns.items()])
+    rows = len(next(iter(columns.values()))) if columns else 0
+    out = np.empty(rows, dtype=[(name, a.dtype) for name, a in columns.items()])
     for name, a in columns.items():
         out[name] = a
     return out

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -19,57 +20,104 @@ int all_cores() { return static_cast<int>(std::max(1u, std::thread::hardware_con
 
 }  // namespace
 
+namespace {
+
+// A parameter of a collapse count and, for those with a store column, its value in one count's
+// spec (e and k: the count's own values from their lists).
+struct CollapseEntry {
+  Parameter info;
+  std::function<TypedValue(const CollapseSpec&)> get;
+};
+
 // Sec. III.D of the paper (free space) and Sec. II.C (a wall); no gravity, m = d = 1. The defaults
 // of N, e, k, engine and setup are the command's own (its fallback texts, which
 // resolve_collapse_options reads); the others are CollapseSpec's (simulation/collapse_run.hpp).
-const std::vector<Parameter>& collapse_parameters() {
-  static const std::vector<Parameter> table = [] {
+const std::vector<CollapseEntry>& collapse_entries() {
+  static const std::vector<CollapseEntry> table = [] {
     const CollapseSpec def;
     const HardSphereOptions& hard = def.engine.hard;
     const auto shown = [](double x) { return fmt::format("{:g}", x); };
     const unsigned c = kUseCollapse | kUsePython;
     using T = ParameterType;
-    std::vector<Parameter> t;
-    t.push_back({"N", T::Integer, "", "number of particles", "integer 2 <= N <= 100000", "3", c, EngineScope::Any, false, "N",
-                 [](double x) { return x >= 2 && x <= 100000; }});
-    t.push_back({"e", T::RealList, "", "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1)", "0 < e <= 1", "0.03", c,
-                 EngineScope::Any, false, "e", [](double x) { return x > 0 && x <= 1; }});
-    t.push_back({"k", T::RealList, "m v0^2 / d^2", "elastic constants: a list or range (1e4:1e12:x10; not with --engine hard, whose k is infinite)",
+    std::vector<CollapseEntry> t;
+    t.push_back({{"N", T::Integer, "", "number of particles", "integer 2 <= N <= 100000", "3", c, EngineScope::Any, false, "N",
+                 [](double x) { return x >= 2 && x <= 100000; }},
+                [](const CollapseSpec& s) -> TypedValue { return static_cast<long long>(s.params.N); }});
+    t.push_back({{"e", T::RealList, "", "restitution coefficients: a list or range (0.01,0.03 or 0.1:0.5:0.1)", "0 < e <= 1", "0.03", c,
+                 EngineScope::Any, false, "e", [](double x) { return x > 0 && x <= 1; }},
+                [](const CollapseSpec& s) -> TypedValue { return s.params.e; }});
+    t.push_back({{"k", T::RealList, "m v0^2 / d^2", "elastic constants: a list or range (1e4:1e12:x10; not with --engine hard, whose k is infinite)",
                  "k > 0", "1e4:1e10:x10", c, EngineScope::Soft, false, "k", [](double x) { return x > 0; },
-                 "the hard-sphere engine has k = infinity"});
-    t.push_back({"engine", T::Name, "", "time integrator", "one of: " + engine_name_list() + " (reference engines: dt = tau_c/dt-factor; hard: k = infinity)",
-                 std::string(engines().front().name), c, EngineScope::Any, false, "engine", {}});
-    t.push_back({"setup", T::Name, "", "where the launch plays out: free space (Sec. III.D), or a wall of restitution e that "
-                 "Bernu-Mazighi spheres are thrown against (Sec. II.C)", "free or wall", "free", c, EngineScope::Any, false, "setup", {}});
-    t.push_back({"a", T::Real, "d", "initial space between neighbours (and particle 1 and the wall)", "a >= 0", shown(def.launch.a), c, EngineScope::Any,
-                 false, "a", [](double x) { return x >= 0; }});
-    t.push_back({"v0", T::Real, "", "launch speed (inward in free space, toward the wall)", "v0 > 0", shown(def.launch.v0), c, EngineScope::Any, false, "v0",
-                 [](double x) { return x > 0; }});
-    t.push_back({"dv0", T::Real, "v0", "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1)", "dv0 >= 0", shown(def.launch.dv0), c,
-                 EngineScope::Any, false, "dv0", [](double x) { return x >= 0; }});
-    t.push_back({"stop", T::Name, "", "stop rule: ends (the paper's, free space only) or strict (no pair approaches)", "ends or strict", "ends in free space, strict on a wall",
-                 c, EngineScope::Any, false, "stop_rule", {}});
-    t.push_back({"realizations", T::Integer, "", "random launches per (e, k) (two for an error bar)", "integer 2 <= realizations <= 10000000",
-                 shown(def.realizations), c, EngineScope::Any, false, "realizations", [](double x) { return x >= 2 && x <= 10000000; }});
-    t.push_back({"seed", T::Integer, "", "base seed; launch r uses derive_seed(seed, r), the same at every e and k",
-                 "integer 0 <= seed <= 9223372036854775807", shown(static_cast<double>(def.seed)), c, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }});
-    t.push_back({"threads", T::Integer, "", "threads over launches (results do not depend on it)", "integer 1 <= threads <= 1024",
-                 "all cores", c, EngineScope::Any, false, "", [](double x) { return x >= 1 && x <= 1024; }});
-    t.push_back({"dt-factor", T::Real, "", "reference engines: dt = tau_c / dt-factor", "10 <= dt-factor <= 1e6", shown(def.engine.dt_factor), c,
-                 EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }});
-    t.push_back({"tc", T::Real, "d / v0",
+                 "the hard-sphere engine has k = infinity"},
+                [](const CollapseSpec& s) -> TypedValue { return s.params.k; }  /* +inf for hard spheres */});
+    t.push_back({{"engine", T::Name, "", "time integrator", "one of: " + engine_name_list() + " (reference engines: dt = tau_c/dt-factor; hard: k = infinity)",
+                 std::string(engines().front().name), c, EngineScope::Any, false, "engine", {}},
+                [](const CollapseSpec& s) -> TypedValue { return std::string(engine_name(s.engine.kind)); }});
+    t.push_back({{"setup", T::Name, "", "where the launch plays out: free space (Sec. III.D), or a wall of restitution e that "
+                 "Bernu-Mazighi spheres are thrown against (Sec. II.C)", "free or wall", "free", c, EngineScope::Any, false, "setup", {}},
+                [](const CollapseSpec& s) -> TypedValue { return std::string(setup_name(s.setup)); }});
+    t.push_back({{"a", T::Real, "d", "initial space between neighbours (and particle 1 and the wall)", "a >= 0", shown(def.launch.a), c, EngineScope::Any,
+                 false, "a", [](double x) { return x >= 0; }},
+                [](const CollapseSpec& s) -> TypedValue { return s.launch.a; }});
+    t.push_back({{"v0", T::Real, "", "launch speed (inward in free space, toward the wall)", "v0 > 0", shown(def.launch.v0), c, EngineScope::Any, false, "v0",
+                 [](double x) { return x > 0; }},
+                [](const CollapseSpec& s) -> TypedValue { return s.launch.v0; }});
+    t.push_back({{"dv0", T::Real, "v0", "amplitude of the uniform random velocity part dv0 xi, xi in [-1, 1)", "dv0 >= 0", shown(def.launch.dv0), c,
+                 EngineScope::Any, false, "dv0", [](double x) { return x >= 0; }},
+                [](const CollapseSpec& s) -> TypedValue { return s.launch.dv0; }});
+    t.push_back({{"stop", T::Name, "", "stop rule: ends (the paper's, free space only) or strict (no pair approaches)", "ends or strict", "ends in free space, strict on a wall",
+                 c, EngineScope::Any, false, "stop_rule", {}},
+                [](const CollapseSpec& s) -> TypedValue { return std::string(rule_name(s.rule)); }});
+    t.push_back({{"realizations", T::Integer, "", "random launches per (e, k) (two for an error bar)", "integer 2 <= realizations <= 10000000",
+                 shown(def.realizations), c, EngineScope::Any, false, "realizations", [](double x) { return x >= 2 && x <= 10000000; }},
+                [](const CollapseSpec& s) -> TypedValue { return static_cast<long long>(s.realizations); }});
+    t.push_back({{"seed", T::Integer, "", "base seed; launch r uses derive_seed(seed, r), the same at every e and k",
+                 "integer 0 <= seed <= 9223372036854775807", shown(static_cast<double>(def.seed)), c, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }},
+                [](const CollapseSpec& s) -> TypedValue { return static_cast<long long>(s.seed); }});
+    t.push_back({{"threads", T::Integer, "", "threads over launches (results do not depend on it)", "integer 1 <= threads <= 1024",
+                 "all cores", c, EngineScope::Any, false, "", [](double x) { return x >= 1 && x <= 1024; }}, {}});
+    t.push_back({{"dt-factor", T::Real, "", "reference engines: dt = tau_c / dt-factor", "10 <= dt-factor <= 1e6", shown(def.engine.dt_factor), c,
+                 EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }},
+                [](const CollapseSpec& s) -> TypedValue { return s.engine.dt_factor; }});
+    t.push_back({{"tc", T::Real, "d / v0",
                  "hard engine: TC model time t_c (a collision within t_c of a particle's previous one is elastic; 0: off)",
                  "tc = 0 (off) or tc >= collapse-time", shown(hard.tc), c, EngineScope::Hard, false, "tc",
-                 [](double x) { return x >= 0; }, "the TC model"});
-    t.push_back({"collapse-collisions", T::Integer, "",
+                 [](double x) { return x >= 0; }, "the TC model"},
+                [](const CollapseSpec& s) -> TypedValue { return s.engine.hard.tc; }});
+    t.push_back({{"collapse-collisions", T::Integer, "",
                  "hard engine: collapse when this many consecutive collisions fit in --collapse-time (each launch keeps that many collision times)",
                  "integer 2 <= collapse-collisions <= 10000000", shown(static_cast<double>(hard.collapse_collisions)), c, EngineScope::Hard,
-                 false, "", [](double x) { return x >= 2 && x <= 10000000; }, "the collapse watch"});
-    t.push_back({"collapse-time", T::Real, "d / v0", "hard engine: see --collapse-collisions", "collapse-time > 0",
-                 shown(hard.collapse_time), c, EngineScope::Hard, false, "", [](double x) { return x > 0; }, "the collapse watch"});
+                 false, "", [](double x) { return x >= 2 && x <= 10000000; }, "the collapse watch"}, {}});
+    t.push_back({{"collapse-time", T::Real, "d / v0", "hard engine: see --collapse-collisions", "collapse-time > 0",
+                 shown(hard.collapse_time), c, EngineScope::Hard, false, "", [](double x) { return x > 0; }, "the collapse watch"}, {}});
     return t;
   }();
   return table;
+}
+
+}  // namespace
+
+const std::vector<Parameter>& collapse_parameters() {
+  static const std::vector<Parameter> table = [] {
+    std::vector<Parameter> t;
+    for (const auto& entry : collapse_entries()) t.push_back(entry.info);
+    return t;
+  }();
+  return table;
+}
+
+std::vector<const Parameter*> stored_collapse_parameters() {
+  std::vector<const Parameter*> out;
+  for (const auto& entry : collapse_entries())
+    if (!entry.info.store_column.empty()) out.push_back(&entry.info);
+  return out;
+}
+
+std::vector<TypedValue> stored_collapse_values(const CollapseSpec& spec) {
+  std::vector<TypedValue> out;
+  for (const auto& entry : collapse_entries())
+    if (!entry.info.store_column.empty()) out.push_back(entry.get(spec));
+  return out;
 }
 
 namespace {

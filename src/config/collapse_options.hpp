@@ -14,6 +14,13 @@ namespace granchain {
 // Every parameter of a collapse count, in the order of --help.
 const std::vector<Parameter>& collapse_parameters();
 
+// The parameters a collapse count keeps in the store's collapse_runs table (those with a store
+// column), in table order: together they define the count (two rows with equal values hold the
+// same count), and the table's parameter columns follow them (store/store_schema.cpp).
+std::vector<const Parameter*> stored_collapse_parameters();
+// Their values for one count (aligned with stored_collapse_parameters(); k = +inf for hard spheres).
+std::vector<TypedValue> stored_collapse_values(const CollapseSpec& spec);
+
 struct CollapseOptions {
   CollapseSpec base;      // everything but e and k
   std::vector<double> es;  // each e of the list, in order

@@ -31,11 +31,19 @@ enum class EngineScope { Any, Soft, Hard, TimeStepped };
 
 struct EngineInfo;
 
+// A value as it is kept: text (a name), an integer or a real.
+using TypedValue = std::variant<std::string, long long, double>;
+
+// The part of a driven-column run's identity (its point key, config/run_key.hpp) that a parameter
+// is, in the key's order: the engine, the physics (model and set-up), the measuring window, the
+// engine's own options, the seed. The store keeps every part in the run's columns.
+enum class RunIdentity { None, Engine, Physics, Window, EngineOption, Seed };
+
 // A value as it arrives: text (a flag, a list such as "1e4:1e10:x10"), or already typed (a
 // Python int or float). `source` says where it came from for messages: "" for the command line,
 // else "config file 'x'".
 struct RawValue {
-  std::variant<std::string, long long, double> value;
+  TypedValue value;
   std::string source;
   RawValue() = default;
   RawValue(std::string text, std::string from = "") : value(std::move(text)), source(std::move(from)) {}
@@ -68,6 +76,8 @@ struct Parameter {
   // Soft or Hard scope: why another engine refuses it ("the hard-sphere engine has k = infinity",
   // "the TC model"), for check_engine_scope's message.
   std::string scope_note = "";
+  // Driven column: the part of a run's identity it is (None: not part of it, like --db).
+  RunIdentity identity = RunIdentity::None;
 
   // "meaning; range; default D" for --help.
   std::string help() const;

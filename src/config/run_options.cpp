@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 #include "config/input_error.hpp"
 #include "engines/engine_registry.hpp"
@@ -14,37 +16,53 @@ namespace granchain {
 
 namespace {
 
-// A parameter of the driven column and what it sets. T and transient are kept aside (`late`):
-// their defaults depend on N.
+// A parameter of the driven column: its entry, how a run's spec holds it (get, and set from a typed
+// value whose range is already checked), and how a raw value is read (apply; by default read as
+// the entry's type, then set).
 struct Definition {
   Parameter info;
-  std::function<void(RunOptions&, const Parameter&, const RawValue&, std::map<std::string, double>&)> apply;
+  bool nullable = false;  // its store column may be NULL: where it does not act, and in runs stored before it
+  std::function<TypedValue(const RunSpec&)> get;
+  std::function<void(RunSpec&, const TypedValue&)> set;
+  std::function<void(RunOptions&, const Parameter&, const RawValue&)> apply;
+  // Where it acts, if not by its engine scope alone (acts()): a drive's amplitude only with that drive.
+  std::function<bool(const RunSpec&)> acts_in = {};
 };
 
-template <class Set>
-Definition real(Parameter p, Set set) {
-  p.type = ParameterType::Real;
-  return {std::move(p), [set](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
-            set(o, read_real(q, v));
-          }};
+double as_real(const TypedValue& v) {
+  if (const auto* i = std::get_if<long long>(&v)) return static_cast<double>(*i);
+  if (const auto* x = std::get_if<double>(&v)) return *x;
+  throw InputError(fmt::format("'{}' is not a number", std::get<std::string>(v)));
 }
 
-template <class Set>
-Definition integer(Parameter p, Set set) {
+long long as_integer(const TypedValue& v) {
+  if (const auto* i = std::get_if<long long>(&v)) return *i;
+  if (const auto* x = std::get_if<double>(&v)) return static_cast<long long>(*x);
+  throw InputError(fmt::format("'{}' is not a number", std::get<std::string>(v)));
+}
+
+// A real parameter held by `field` of the spec, always acting.
+template <class Field>
+Definition real(Parameter p, RunIdentity part, Field field) {
+  p.type = ParameterType::Real;
+  p.identity = part;
+  return {std::move(p), false, [field](const RunSpec& s) -> TypedValue { return field(s); },
+          [field](RunSpec& s, const TypedValue& v) { field(s) = as_real(v); }, {}};
+}
+
+template <class Field>
+Definition integer(Parameter p, RunIdentity part, Field field) {
   p.type = ParameterType::Integer;
-  return {std::move(p), [set](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
-            set(o, read_integer(q, v));
-          }};
+  p.identity = part;
+  return {std::move(p), false,
+          [field](const RunSpec& s) -> TypedValue { return static_cast<long long>(field(s)); },
+          [field](RunSpec& s, const TypedValue& v) { field(s) = static_cast<std::remove_cvref_t<decltype(field(s))>>(as_integer(v)); },
+          {}};
 }
 
-Definition late_real(Parameter p) {
-  p.type = ParameterType::Real;
-  return {std::move(p), [](RunOptions&, const Parameter& q, const RawValue& v, std::map<std::string, double>& late) {
-            late[q.name] = read_real(q, v);
-          }};
-}
-
-// The driven column's parameters (Sec. II of the paper; units m = d = g = 1 unless set).
+// The driven column's parameters (Sec. II of the paper; units m = d = g = 1 unless set). An entry
+// with a store column is part of a run's identity: its point key and its row in the store follow
+// from the entry (config/run_key.hpp, store/store_schema.cpp).
 const std::vector<Definition>& definitions() {
   static const std::vector<Definition> defs = [] {
     // The defaults are those of RunOptions (model/chain_parameters.hpp, simulation/driven_run.hpp,
@@ -52,34 +70,50 @@ const std::vector<Definition>& definitions() {
     const RunOptions def;
     const HardSphereOptions& hard = def.spec.engine.hard;
     const auto shown = [](double x) { return fmt::format("{:g}", x); };
+    using I = RunIdentity;
     std::vector<Definition> d;
     d.push_back(integer({"N", {}, "", "number of particles", "integer 1 <= N <= 100000", shown(def.spec.params.N), kUseDriven | kUseTrace, EngineScope::Any, true, "N",
                          [](double x) { return x >= 1 && x <= 100000; }},
-                        [](RunOptions& o, long long n) { o.spec.params.N = static_cast<int>(n); }));
+                        I::Physics, [](auto& s) -> auto& { return s.params.N; }));
     d.push_back(real({"e", {}, "", "restitution coefficient of a binary collision", "0 < e <= 1", shown(def.spec.params.e), kUseDriven | kUseTrace, EngineScope::Any, true,
                       "e", [](double x) { return x > 0 && x <= 1; }},
-                     [](RunOptions& o, double x) { o.spec.params.e = x; }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.e; }));
     d.push_back(real({"k", {}, "m g / d", "elastic constant of the spring (hard-sphere limit: k -> infinity at fixed e)", "k > 0",
                       shown(def.spec.params.k), kUseDriven | kUseTrace, EngineScope::Soft, true, "k", [](double x) { return x > 0; },
                       "the hard-sphere engine has k = infinity"},
-                     [](RunOptions& o, double x) { o.spec.params.k = x; }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.k; }));
     d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0", "T0 > 0", shown(def.spec.params.kT0), kUseDriven | kUseTrace, EngineScope::Any, true,
                       "T0", [](double x) { return x > 0; }},
-                     [](RunOptions& o, double x) { o.spec.params.kT0 = x; }));
-    d.push_back(late_real({"T", {}, "sqrt(d / g)", "measuring time (window after the transient)", "T > 0",
-                           "1e4 for N < 50, 1e3 for N >= 50 (the paper's)", kUseDriven, EngineScope::Any, true, "T",
-                           [](double x) { return x > 0; }}));
-    d.push_back(late_real({"transient", {}, "sqrt(d / g)", "discarded time before the measuring window", "transient >= 0", "T/10",
-                           kUseDriven, EngineScope::Any, false, "transient", [](double x) { return x >= 0; }}));
-    d.push_back(integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807",
-                         shown(static_cast<double>(def.spec.seed)),
-                         kUseDriven | kUseTrace, EngineScope::Any, false, "seed", [](double x) { return x >= 0; }},
-                        [](RunOptions& o, long long s) { o.spec.seed = static_cast<std::uint64_t>(s); }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.kT0; }));
+    // T and transient: their defaults depend on N (resolve_run_options).
+    d.push_back(real({"T", {}, "sqrt(d / g)", "measuring time (window after the transient)", "T > 0",
+                      "1e4 for N < 50, 1e3 for N >= 50 (the paper's)", kUseDriven, EngineScope::Any, true, "T",
+                      [](double x) { return x > 0; }},
+                     I::Window, [](auto& s) -> auto& { return s.T; }));
+    d.push_back(real({"transient", {}, "sqrt(d / g)", "discarded time before the measuring window", "transient >= 0", "T/10",
+                      kUseDriven, EngineScope::Any, false, "transient", [](double x) { return x >= 0; }},
+                     I::Window, [](auto& s) -> auto& { return s.transient; }));
+    {
+      Definition seed = integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807",
+                                 shown(static_cast<double>(def.spec.seed)), kUseDriven | kUseTrace, EngineScope::Any, false, "seed",
+                                 [](double x) { return x >= 0; }},
+                                I::Seed, [](auto& s) -> auto& { return s.seed; });
+      d.push_back(std::move(seed));
+    }
     {
       const std::string names = engine_name_list();
       Parameter p{"engine", ParameterType::Name, "", "time integrator (reference = the paper's 2nd-order Runge-Kutta with dt = tau_c/dt-factor)",
                   "one of: " + names, std::string(engines().front().name), kUseDriven | kUseTrace, EngineScope::Any, true, "engine", {}};
-      d.push_back({std::move(p), [names](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+      p.identity = I::Engine;
+      const auto set = [names](RunSpec& s, const TypedValue& v) {
+        const std::string& name = std::get<std::string>(v);
+        const EngineInfo* e = find_engine(name);
+        if (!e) throw InputError(fmt::format("'{}' is not an engine; valid: {}", name, names));
+        s.engine.kind = e->kind;
+      };
+      d.push_back({std::move(p), false,
+                   [](const RunSpec& s) -> TypedValue { return std::string(engine_name(s.engine.kind)); }, set,
+                   [names](RunOptions& o, const Parameter& q, const RawValue& v) {
                      const std::string name = read_name(q, v);
                      if (const EngineInfo* e = find_engine(name)) {
                        o.spec.engine.kind = e->kind;
@@ -91,43 +125,52 @@ const std::vector<Definition>& definitions() {
     d.push_back(real({"dt-factor", {}, "", "reference engine step dt = tau_c / dt-factor (the paper: 100)", "10 <= dt-factor <= 1e6",
                       shown(def.spec.engine.dt_factor),
                       kUseDriven | kUseTrace, EngineScope::TimeStepped, false, "dt_factor", [](double x) { return x >= 10 && x <= 1e6; }},
-                     [](RunOptions& o, double x) { o.spec.engine.dt_factor = x; }));
+                     I::EngineOption, [](auto& s) -> auto& { return s.engine.dt_factor; }));
     // The hard engine declares an inelastic collapse when collapse_collisions (1000) collisions
     // fall within collapse_time (1e-9). A TC time shorter than that span leaves collisions inside
     // it inelastic, and the watch can fire although the TC model is on (N = 100, e = 0.05 collapses
     // at tc = 1e-10, runs at 1e-9); from tc = collapse_time on, every further collision of a
     // particle inside the span is elastic.
-    d.push_back(real({"tc", {}, "sqrt(d / g)",
-                      "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
-                      fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
-                                  "a shorter t_c leaves them inelastic)",
-                                  hard.collapse_time, hard.collapse_collisions, hard.collapse_time),
-                      shown(hard.tc), kUseDriven, EngineScope::Hard, false, "tc",
-                      [min = hard.collapse_time](double x) { return x == 0 || x >= min; }, "the TC model"},
-                     [](RunOptions& o, double x) { o.spec.engine.hard.tc = x; }));
+    {
+      Definition tc = real({"tc", {}, "sqrt(d / g)",
+                            "hard engine: TC model time t_c, a collision within t_c of a particle's previous one is elastic (0: off)",
+                            fmt::format("tc = 0 (off) or tc >= {:g} (the hard engine counts {} collisions within {:g} as a collapse; "
+                                        "a shorter t_c leaves them inelastic)",
+                                        hard.collapse_time, hard.collapse_collisions, hard.collapse_time),
+                            shown(hard.tc), kUseDriven, EngineScope::Hard, false, "tc",
+                            [min = hard.collapse_time](double x) { return x == 0 || x >= min; }, "the TC model"},
+                           I::EngineOption, [](auto& s) -> auto& { return s.engine.hard.tc; });
+      tc.nullable = true;  // NULL for the soft engines
+      d.push_back(std::move(tc));
+    }
     d.push_back(real({"m", {}, "", "particle mass (unit of mass)", "m > 0", shown(def.spec.params.m), kUseDriven | kUseTrace, EngineScope::Any, false, "m",
                       [](double x) { return x > 0; }},
-                     [](RunOptions& o, double x) { o.spec.params.m = x; }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.m; }));
     d.push_back(real({"d", {}, "", "particle diameter (unit of length)", "d > 0", shown(def.spec.params.d), kUseDriven | kUseTrace, EngineScope::Any, false, "d",
                       [](double x) { return x > 0; }},
-                     [](RunOptions& o, double x) { o.spec.params.d = x; }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.d; }));
     d.push_back(real({"g", {}, "", "gravitational acceleration", "g > 0", shown(def.spec.params.g), kUseDriven | kUseTrace, EngineScope::Any, false, "g",
                       [](double x) { return x > 0; }},
-                     [](RunOptions& o, double x) { o.spec.params.g = x; }));
+                     I::Physics, [](auto& s) -> auto& { return s.params.g; }));
     d.push_back(real({"sample-interval", {}, "sqrt(d / g)",
                       "time between profile samples (rounded to whole engine steps); 16 to 1e10 samples in T, at least 1e6 clock resolutions",
                       "sample-interval > 0", shown(def.spec.sample_interval), kUseDriven, EngineScope::Any, false, "sample_interval", [](double x) { return x > 0; }},
-                     [](RunOptions& o, double x) { o.spec.sample_interval = x; }));
-    d.push_back(integer({"bins", {}, "", "time bins for the blocking error analysis", "power of two, 16 <= bins <= 65536", shown(def.spec.bins),
-                         kUseDriven, EngineScope::Any, false, "bins",
-                         [](double x) {
-                           const auto b = static_cast<long long>(x);
-                           return b >= 16 && b <= 65536 && (b & (b - 1)) == 0;
-                         }},
-                        [](RunOptions& o, long long b) { o.spec.bins = static_cast<int>(b); }));
+                     I::Window, [](auto& s) -> auto& { return s.sample_interval; }));
+    {
+      Definition bins = integer({"bins", {}, "", "time bins for the blocking error analysis", "power of two, 16 <= bins <= 65536", shown(def.spec.bins),
+                                 kUseDriven, EngineScope::Any, false, "bins",
+                                 [](double x) {
+                                   const auto b = static_cast<long long>(x);
+                                   return b >= 16 && b <= 65536 && (b & (b - 1)) == 0;
+                                 }},
+                                I::Window, [](auto& s) -> auto& { return s.bins; });
+      bins.nullable = true;  // runs of the first store version have none
+      d.push_back(std::move(bins));
+    }
     d.push_back({{"db", ParameterType::Path, "", "results store (SQLite file), created if missing", "a file name",
                   def.db_path + " in the working folder", kUseRun | kUseSweep | kUsePython, EngineScope::Any, false, "", {}},
-                 [](RunOptions& o, const Parameter& q, const RawValue& v, std::map<std::string, double>&) {
+                 false, {}, {},
+                 [](RunOptions& o, const Parameter& q, const RawValue& v) {
                    const std::string path = read_name(q, v);
                    if (path.empty()) throw InputError("--db: the path is empty; give a file name");
                    o.db_path = std::get<std::string>(v.value);
@@ -135,6 +178,16 @@ const std::vector<Definition>& definitions() {
     return d;
   }();
   return defs;
+}
+
+// Reads a raw value as the entry's type and sets it (the entries without their own apply).
+void apply(const Definition& d, RunOptions& o, const RawValue& v) {
+  if (d.apply) return d.apply(o, d.info, v);
+  switch (d.info.type) {
+    case ParameterType::Integer: return d.set(o.spec, read_integer(d.info, v));
+    case ParameterType::Real: return d.set(o.spec, read_real(d.info, v));
+    default: return d.set(o.spec, read_name(d.info, v));
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -258,12 +311,11 @@ const std::vector<Parameter>& run_parameters() {
 
 RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   RunOptions o;
-  std::map<std::string, double> late;
   for (const auto& [key, value] : raw) {
     bool known = false;
     for (const auto& d : definitions()) {
       if (d.info.name == key) {
-        d.apply(o, d.info, value, late);
+        apply(d, o, value);
         known = true;
         break;
       }
@@ -273,8 +325,8 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   }
   check_engine_scope(run_parameters(), raw, engine_info(o.spec.engine.kind));
   if (engine_info(o.spec.engine.kind).hard_spheres) o.spec.params.k = std::numeric_limits<double>::infinity();
-  o.spec.T = late.count("T") ? late["T"] : default_measuring_time(o.spec.params.N);
-  o.spec.transient = late.count("transient") ? late["transient"] : o.spec.T / 10.0;
+  if (!raw.count("T")) o.spec.T = default_measuring_time(o.spec.params.N);
+  if (!raw.count("transient")) o.spec.transient = o.spec.T / 10.0;
   check_contact_time(o, raw);
   check_height_scale(o, raw);
   // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
@@ -316,5 +368,46 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   }
   return o;
 }
+
+namespace {
+
+// The entries with a store column, in the order of a run's identity (then of the table).
+const std::vector<const Definition*>& stored_definitions() {
+  static const std::vector<const Definition*> stored = [] {
+    std::vector<const Definition*> v;
+    for (const auto& d : definitions())
+      if (!d.info.store_column.empty()) v.push_back(&d);
+    std::stable_sort(v.begin(), v.end(), [](const Definition* a, const Definition* b) { return a->info.identity < b->info.identity; });
+    return v;
+  }();
+  return stored;
+}
+
+}  // namespace
+
+const std::vector<StoredParameter>& stored_run_parameters() {
+  static const std::vector<StoredParameter> out = [] {
+    std::vector<StoredParameter> v;
+    for (const Definition* d : stored_definitions()) v.push_back({&d->info, d->nullable});
+    return v;
+  }();
+  return out;
+}
+
+bool acts(const Parameter& p, const EngineInfo& engine) {
+  if (p.engines == EngineScope::Hard) return engine.hard_spheres;
+  if (p.engines == EngineScope::TimeStepped) return engine.time_stepped;
+  return true;  // k too: the hard-sphere engine runs at k = infinity
+}
+
+std::vector<StoredValue> stored_values(const RunSpec& spec) {
+  const EngineInfo& engine = engine_info(spec.engine.kind);
+  std::vector<StoredValue> v;
+  for (const Definition* d : stored_definitions())
+    v.push_back({d->get(spec), acts(d->info, engine) && (!d->acts_in || d->acts_in(spec))});
+  return v;
+}
+
+void set_stored_value(RunSpec& spec, std::size_t i, const TypedValue& value) { stored_definitions().at(i)->set(spec, value); }
 
 }  // namespace granchain

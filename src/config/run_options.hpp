@@ -20,6 +20,36 @@ struct RunOptions {
 // Every parameter that may come from a flag or a config file (config/parameter.hpp).
 const std::vector<Parameter>& run_parameters();
 
+// A parameter that a driven-column run keeps in the store's runs table (its store_column): the
+// entry, and whether the column may be NULL (tc, which only the hard engine takes; bins, which runs
+// of the first store version lack). A column added to the table later is NULL in older runs.
+struct StoredParameter {
+  const Parameter* parameter;
+  bool nullable;
+};
+// The stored parameters in the order of a run's identity (RunIdentity, then table order): the
+// order of the point key and of the store's parameter columns.
+const std::vector<StoredParameter>& stored_run_parameters();
+// Whether a parameter acts in a run of this engine: a Hard one (tc) only for the hard-sphere
+// engine, a TimeStepped one (dt_factor) only for the time-stepped engines, any other always (k
+// too: the hard-sphere engine runs at k = infinity). Only what acts enters a run's point key.
+bool acts(const Parameter& p, const EngineInfo& engine);
+// The value of each stored parameter in a run (aligned with stored_run_parameters()) and whether
+// it acts there: by its engine scope (acts()) and, where its entry says so, by the run's other
+// parameters (a drive's amplitude only with that drive). The store keeps NULL for a nullable one
+// that does not act (tc of a soft engine).
+struct StoredValue {
+  TypedValue value;
+  bool acts;
+};
+std::vector<StoredValue> stored_values(const RunSpec& spec);
+// The seed is a 64-bit unsigned number (a sweep derives seeds over the whole range), held as the
+// signed integer of the same bits as SQLite keeps it; the edges (key, JSON, Python) show it unsigned.
+inline bool unsigned_integer(const Parameter& p) { return p.identity == RunIdentity::Seed; }
+// Sets the i-th stored parameter of a spec from a stored value, without the range checks (the
+// store keeps what passed them). Throws InputError for a name nothing takes (an unknown engine).
+void set_stored_value(RunSpec& spec, std::size_t i, const TypedValue& value);
+
 // Parses and validates raw values (unknown keys, bad numbers, out-of-range values all throw
 // InputError with one line naming the parameter and its valid range) and fills in defaults:
 // T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.

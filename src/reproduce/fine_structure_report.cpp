@@ -28,10 +28,10 @@ SmallNCurves read_curves(const std::string& db, const std::vector<SweepPoint>& p
   for (const SweepPoint& p : points) sel.point_keys.push_back(p.key);
   std::map<int, std::map<double, std::map<int, std::map<double, DataPoint>>>> acc;  // N, k, replica, e
   for (const StoredRun& row : read_runs(db, sel)) {
-    if (std::isnan(row.n_coll_err) || !std::isfinite(row.params.k)) continue;
-    const double e = row.params.e, err = row.n_coll_err;
+    if (std::isnan(row.n_coll_err) || !std::isfinite(row.spec.params.k)) continue;
+    const double e = row.spec.params.e, err = row.n_coll_err;
     if (!(err > 0)) continue;
-    acc[row.params.N][row.params.k][row.replica][e] = {e, row.n_coll, err};
+    acc[row.spec.params.N][row.spec.params.k][row.replica][e] = {e, row.n_coll, err};
   }
   SmallNCurves out;
   for (const auto& [N, by_k] : acc)

@@ -8,7 +8,7 @@
 #include <tuple>
 
 #include "reproduce/plot_script.hpp"
-#include "simulation/run_key.hpp"
+#include "config/run_key.hpp"
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 #include "store/stored_rows.hpp"
@@ -28,19 +28,19 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
   std::map<std::tuple<int, double, double>, ChainParameters> params;
   for (const StoredProfile& row : read_profiles(db, sel)) {
     // Hard spheres (no finite k) have no place on the k axis; profiles without errors carry no weight.
-    if (row.setup != "driven_column" || !std::isfinite(row.params.k) || std::isnan(row.K_err) || std::isnan(row.z_std_err) ||
+    if (row.setup != "driven_column" || !std::isfinite(row.spec.params.k) || std::isnan(row.K_err) || std::isnan(row.z_std_err) ||
         left_out.count(row.run_id))
       continue;
     const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{row.engine, row.params.N, row.params.kT0};
-    const double e = row.params.e, k = row.params.k;
+    const FamilyKey key{row.spec.engine.kind, row.spec.params.N, row.spec.params.kT0};
+    const double e = row.spec.params.e, k = row.spec.params.k;
     auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);
     a[1] += row.K_mean / (kerr * kerr);
     a[2] += 1.0 / (serr * serr);
     a[3] += row.z_std / (serr * serr);
-    ChainParameters p = row.params;
+    ChainParameters p = row.spec.params;
     p.e = 1.0;
     params[{p.N, p.kT0, k}] = p;
   }
@@ -63,16 +63,6 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       out[key][e] = {k, analysis::detect_partial_condensation(K, sigma, sigma0), K, sigma, sigma0};
     }
   return out;
-}
-
-// The trajectory a stored run followed (simulation/run_key.hpp), from its columns.
-std::string trajectory_of_row(const StoredRun& row) {
-  RunSpec s;
-  s.engine = row.engine;
-  s.params = row.params;
-  if (!std::isfinite(s.params.k)) s.params.k = std::nan("");  // hard spheres: no k in the key
-  s.seed = row.seed;
-  return trajectory_key(s);
 }
 
 }  // namespace
@@ -142,17 +132,17 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
     analysis::NcollRun run;
-    run.engine = row.engine.kind;
-    run.N = row.params.N;
-    run.kT0 = row.params.kT0;
-    run.e = row.params.e;
-    run.k = std::isfinite(row.params.k) ? row.params.k : std::nan("");  // hard spheres: no point on the k axis
+    run.engine = row.spec.engine.kind;
+    run.N = row.spec.params.N;
+    run.kT0 = row.spec.params.kT0;
+    run.e = row.spec.params.e;
+    run.k = std::isfinite(row.spec.params.k) ? row.spec.params.k : std::nan("");  // hard spheres: no point on the k axis
     run.n_coll = row.n_coll;
     run.n_coll_err = row.n_coll_err;
     run.stationary = row.stationary.value_or(true);  // runs stored before the check count as stationary
     run.run_id = row.id;
-    run.trajectory = trajectory_of_row(row);
-    run.T = row.T;
+    run.trajectory = trajectory_key(row.spec);  // config/run_key.hpp
+    run.T = row.spec.T;
     runs.push_back(run);
   }
   a.runs = runs.size();

@@ -1,9 +1,10 @@
 // The free-space collapse counts of the results store (granchain collapse, reproduce): one row
-// per count in collapse_runs, identified by its definition (kCollapseIdentityColumns), and one per
+// per count in collapse_runs, identified by its definition (collapse_identity_columns()), and one per
 // launch in collapse_realizations.
 #include <fmt/format.h>
 #include <sqlite3.h>
 
+#include "config/collapse_options.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "store/sqlite_statement.hpp"
@@ -13,27 +14,19 @@ namespace granchain {
 
 namespace {
 
-// The values of kCollapseIdentityColumns for a collapse count, in that order, from index c on.
+// The values of collapse_identity_columns() for a collapse count, in that order, from index c on.
 void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
-  q.bind(c++, std::string(setup_name(s.setup)));
-  q.bind(c++, std::string(engine_name(s.engine.kind)));
-  q.bind(c++, static_cast<std::int64_t>(s.params.N));
-  q.bind(c++, s.params.e);
-  q.bind(c++, s.params.k);  // +inf for hard spheres (SQLite keeps it as Inf)
-  q.bind(c++, s.launch.a);
-  q.bind(c++, s.launch.v0);
-  q.bind(c++, s.launch.dv0);
-  q.bind(c++, std::string(rule_name(s.rule)));
-  q.bind(c++, static_cast<std::int64_t>(s.realizations));
-  q.bind(c++, static_cast<std::int64_t>(s.seed));
-  q.bind(c++, s.engine.dt_factor);
-  q.bind(c++, s.engine.hard.tc);
+  for (const TypedValue& v : stored_collapse_values(s)) {
+    if (const auto* t = std::get_if<std::string>(&v)) q.bind(c++, *t);
+    else if (const auto* i = std::get_if<long long>(&v)) q.bind(c++, static_cast<std::int64_t>(*i));
+    else q.bind(c++, std::get<double>(v));  // k = +inf for hard spheres (SQLite keeps it as Inf)
+  }
 }
 
 // The id of the first stored count with this definition, if any.
 std::optional<std::int64_t> stored_collapse_id(sqlite3* db, const CollapseSpec& spec) {
   std::string where;
-  for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
+  for (const std::string& c : collapse_identity_columns()) where += fmt::format("{}{} = ?", where.empty() ? "" : " AND ", c);
   SqlStatement find(db, ("SELECT id FROM collapse_runs WHERE " + where + " ORDER BY id LIMIT 1").c_str());
   int f = 1;
   bind_collapse_definition(find, f, spec);
@@ -42,6 +35,12 @@ std::optional<std::int64_t> stored_collapse_id(sqlite3* db, const CollapseSpec& 
 }
 
 }  // namespace
+
+std::vector<std::string> collapse_identity_columns() {
+  std::vector<std::string> columns;
+  for (const Parameter* p : stored_collapse_parameters()) columns.push_back(p->store_column);
+  return columns;
+}
 
 std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& spec) {
   const std::optional<std::int64_t> id = stored_collapse_id(db_, spec);
@@ -76,9 +75,13 @@ std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& sp
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   return in_transaction([&] {
     if (const std::optional<std::int64_t> stored = stored_collapse_id(db_, r.spec)) return *stored;  // the same count is already stored
-    SqlStatement row(db_, R"sql(INSERT INTO collapse_runs(created_utc, code_version, setup, engine, N, e, k, a, v0,
-        dv0, stop_rule, realizations, seed, dt_factor, tc, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed,
-        wall_seconds, result_json) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
+    std::string names = "created_utc, code_version", marks = "?,?";
+    for (const std::string& c : collapse_identity_columns()) {
+      names += ", " + c;
+      marks += ",?";
+    }
+    SqlStatement row(db_, fmt::format("INSERT INTO collapse_runs({}, tau_c, n_tot, n_tot_err, n_tot_min, n_tot_max, collapsed, "
+                                      "wall_seconds, result_json) VALUES({},?,?,?,?,?,?,?,?)", names, marks).c_str());
     const CollapseSpec& s = r.spec;
     int c = 1;
     row.bind(c++, utc_now());

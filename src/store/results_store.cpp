@@ -9,8 +9,9 @@
 #include <limits>
 #include <fmt/format.h>
 
+#include "config/run_options.hpp"
 #include "store/run_json.hpp"
-#include "simulation/run_key.hpp"
+#include "config/run_key.hpp"
 #include "store/sqlite_statement.hpp"
 #include "store/store_schema.hpp"
 #include "version.hpp"
@@ -199,6 +200,7 @@ void ResultsStore::open_read_write() {
     exec(schema_sql().c_str());
     if (schema_version() == 1) migrate_from_version_1();
     if (schema_version() == 2) migrate_from_version_2();
+    exec(missing_parameter_columns_sql(db_).c_str());
     exec("COMMIT");
     exec("PRAGMA foreign_keys = ON");
   } catch (...) {
@@ -225,7 +227,7 @@ int ResultsStore::schema_version() {
 void ResultsStore::migrate_from_version_1() {
   // SQLite's order for a rebuild (create new, copy, drop old, rename new), with foreign keys off:
   // renaming the old table instead would rewrite the profiles' reference to follow it.
-  exec((std::string("CREATE TABLE runs_version_2") + kRunsColumns).c_str());
+  exec(("CREATE TABLE runs_version_2" + runs_columns_sql()).c_str());
   exec(R"sql(INSERT INTO runs_version_2(id, created_utc, code_version, setup, engine, N, e, k, T0, m, d, g, T, transient, seed,
         dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err, n_coll_blocks, n_coll_converged,
         floor_rate, floor_rate_err, pp_rate, pp_rate_err, particle_collisions, floor_hits, steps, events, wall_seconds,
@@ -346,33 +348,37 @@ std::map<std::string, ResultsStore::PointSummary> ResultsStore::point_summaries(
 
 std::int64_t ResultsStore::append_run(const RunResult& r) {
   {
-    SqlStatement run(db_, R"sql(INSERT INTO runs(created_utc, code_version, setup, engine, N, e, k, T0, m, d, g,
-        T, transient, seed, dt_factor, damping_D, tau_c, dt, sample_interval, samples, n_coll, n_coll_err,
-        n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, pp_rate, pp_rate_err,
-        particle_collisions, floor_hits, steps, events, wall_seconds, result_json, tc, bins, stationary, cpu_seconds)
-        VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?))sql");
-    const RunSpec& s = r.spec;
+    // The provenance, the stored parameters (config/run_options.hpp, NULL where one does not act),
+    // then the results: the columns of store_schema.cpp in their order.
+    static const std::string insert = [] {
+      std::string names = "created_utc, code_version, setup", marks = "?,?,?";
+      for (const StoredParameter& c : stored_run_parameters()) {
+        names += ", " + c.parameter->store_column;
+        marks += ",?";
+      }
+      names += ", damping_D, tau_c, dt, samples, n_coll, n_coll_err, n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, "
+               "pp_rate, pp_rate_err, particle_collisions, floor_hits, steps, events, wall_seconds, result_json, stationary, cpu_seconds";
+      marks += ",?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?";
+      return "INSERT INTO runs(" + names + ") VALUES(" + marks + ")";
+    }();
+    SqlStatement run(db_, insert.c_str());
     int c = 1;
     run.bind(c++, utc_now());
     run.bind(c++, std::string(code_version()));
     run.bind(c++, std::string("driven_column"));
-    run.bind(c++, std::string(engine_name(s.engine.kind)));
-    run.bind(c++, static_cast<std::int64_t>(s.params.N));
-    run.bind(c++, s.params.e);
-    run.bind(c++, s.params.k);
-    run.bind(c++, s.params.kT0);
-    run.bind(c++, s.params.m);
-    run.bind(c++, s.params.d);
-    run.bind(c++, s.params.g);
-    run.bind(c++, s.T);
-    run.bind(c++, s.transient);
-    run.bind(c++, static_cast<std::int64_t>(s.seed));
-    run.bind(c++, s.engine.dt_factor);
+    const auto& stored = stored_run_parameters();
+    const auto values = stored_values(r.spec);
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      const TypedValue& v = values[i].value;
+      if (stored[i].nullable && !values[i].acts) run.bind_null(c++);  // tc of a soft engine
+      else if (const auto* t = std::get_if<std::string>(&v)) run.bind(c++, *t);
+      else if (const auto* n = std::get_if<long long>(&v)) run.bind(c++, static_cast<std::int64_t>(*n));
+      else run.bind(c++, std::get<double>(v));
+    }
     run.bind(c++, r.law.D);
     run.bind(c++, r.law.tau_c);
     if (r.time_step > 0) run.bind(c++, r.time_step);
     else run.bind_null(c++);  // an event-driven engine has no step
-    run.bind(c++, r.sample_interval);
     run.bind(c++, static_cast<std::int64_t>(r.samples));
     run.bind(c++, r.n_coll.value);
     run.bind(c++, r.n_coll.error);
@@ -388,9 +394,6 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     run.bind(c++, static_cast<std::int64_t>(r.events));
     run.bind(c++, r.wall_seconds);
     run.bind(c++, run_result_to_json(r).dump());
-    if (engine_info(s.engine.kind).hard_spheres) run.bind(c++, s.engine.hard.tc);
-    else run.bind_null(c++);  // the TC time is the hard engine's
-    run.bind(c++, static_cast<std::int64_t>(s.bins));
     run.bind(c++, static_cast<std::int64_t>(r.stationary() ? 1 : 0));
     run.bind(c++, r.cpu_seconds);  // NaN (not measured) is stored as NULL
     run.run();

@@ -31,10 +31,10 @@ class StoreError : public std::runtime_error {
 // for writing; readers read every version.
 inline constexpr int kStoreSchemaVersion = 3;
 
-// The columns of collapse_runs that define a collapse count, in the table's order; two rows with
-// equal values here hold the same count (ResultsStore::insert_collapse, merge).
-inline constexpr const char* kCollapseIdentityColumns[] = {"setup", "engine", "N", "e", "k", "a", "v0", "dv0",
-                                                           "stop_rule", "realizations", "seed", "dt_factor", "tc"};
+// The columns of collapse_runs that define a collapse count: the store columns of the collapse
+// parameters (config/collapse_options.hpp); two rows with equal values there hold the same count
+// (ResultsStore::insert_collapse, merge).
+std::vector<std::string> collapse_identity_columns();
 
 // Why a new file could not be created at `path` ("" if it can): its folder must exist and be
 // writable, and the path must not be a folder.
@@ -84,7 +84,7 @@ class ResultsStore {
     std::int64_t id = 0;
     bool inserted = false;
   };
-  // Appends one run with its profiles and its point key (simulation/run_key.hpp) in one
+  // Appends one run with its profiles and its point key (config/run_key.hpp) in one
   // transaction, unless a run with the same key (every parameter and the seed: the same
   // trajectory) is stored already: then nothing is written and that run's id is returned with
   // inserted = false, so one trajectory is never stored, nor counted, twice.
@@ -113,10 +113,10 @@ class ResultsStore {
   std::map<std::string, PointSummary> point_summaries();
   // Stores one collapse count (granchain collapse) with its per-realisation counts, in one
   // transaction, and returns its id. A count is a deterministic function of its definition
-  // (kCollapseIdentityColumns), so one already stored with the same definition is kept and its id
+  // (collapse_identity_columns()), so one already stored with the same definition is kept and its id
   // returned: a repeated command adds nothing.
   std::int64_t insert_collapse(const CollapseResult& r);
-  // The stored count with this definition (kCollapseIdentityColumns), with its per-launch outcomes,
+  // The stored count with this definition (collapse_identity_columns()), with its per-launch outcomes,
   // or nothing. What the store does not keep (contacts below the exact engine's resolution) is 0.
   std::optional<CollapseResult> find_collapse(const CollapseSpec& spec);
   std::int64_t count_runs();

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "config/run_options.hpp"
+#include "engines/engine_registry.hpp"
 #include "version.hpp"
 #include "provenance.hpp"
 
@@ -13,23 +15,20 @@ json to_json(const Estimate& e) {
   return json{{"value", e.value}, {"error", e.error}, {"blocks", e.blocks}, {"converged", e.converged}};
 }
 
+// The set-up and every stored parameter of the table (config/run_options.hpp), under its store
+// column's name; k is null for hard spheres (JSON has no infinity).
 json run_spec_to_json(const RunSpec& s) {
-  return json{{"setup", "driven_column"},
-              {"N", s.params.N},
-              {"e", s.params.e},
-              {"k", s.params.k},
-              {"T0", s.params.kT0},
-              {"m", s.params.m},
-              {"d", s.params.d},
-              {"g", s.params.g},
-              {"T", s.T},
-              {"transient", s.transient},
-              {"seed", s.seed},
-              {"engine", engine_name(s.engine.kind)},
-              {"dt_factor", s.engine.dt_factor},
-              {"sample_interval", s.sample_interval},
-              {"bins", s.bins},
-              {"tc", s.engine.hard.tc}};
+  json j{{"setup", "driven_column"}};
+  const auto& stored = stored_run_parameters();
+  const auto values = stored_values(s);
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    const Parameter& p = *stored[i].parameter;
+    const TypedValue& v = values[i].value;
+    if (const auto* t = std::get_if<std::string>(&v)) j[p.store_column] = *t;
+    else if (const auto* n = std::get_if<long long>(&v)) j[p.store_column] = unsigned_integer(p) ? json(static_cast<std::uint64_t>(*n)) : json(*n);
+    else j[p.store_column] = std::get<double>(v);
+  }
+  return j;
 }
 
 json run_result_to_json(const RunResult& r) {
@@ -90,21 +89,16 @@ RunResult run_result_from_json(const json& j) {
   RunResult r;
   const json& p = j.at("parameters");
   RunSpec& s = r.spec;
-  s.params.N = p.at("N").get<int>();
-  s.params.e = p.at("e").get<double>();
-  s.params.k = real_or(p, "k", std::numeric_limits<double>::infinity());
-  s.params.kT0 = p.at("T0").get<double>();
-  s.params.m = p.at("m").get<double>();
-  s.params.d = p.at("d").get<double>();
-  s.params.g = p.at("g").get<double>();
-  s.T = p.at("T").get<double>();
-  s.transient = p.at("transient").get<double>();
-  s.seed = p.at("seed").get<std::uint64_t>();
-  s.engine.kind = stored_engine_kind(p.at("engine").get<std::string>());
-  s.engine.dt_factor = p.at("dt_factor").get<double>();
-  s.engine.hard.tc = p.value("tc", 0.0);
-  s.sample_interval = p.at("sample_interval").get<double>();
-  s.bins = p.at("bins").get<int>();
+  const auto& stored = stored_run_parameters();
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    const auto it = p.find(stored[i].parameter->store_column);
+    if (it == p.end() || it->is_null()) continue;  // a parameter this JSON predates; k of hard spheres
+    if (it->is_string()) set_stored_value(s, i, it->get<std::string>());
+    else if (it->is_number_unsigned()) set_stored_value(s, i, static_cast<long long>(it->get<std::uint64_t>()));
+    else if (it->is_number_integer()) set_stored_value(s, i, it->get<long long>());
+    else set_stored_value(s, i, it->get<double>());
+  }
+  if (engine_info(s.engine.kind).hard_spheres) s.params.k = std::numeric_limits<double>::infinity();
   r.law = contact_law(s.params);
   const json& d = j.at("derived");
   r.law.D = real_or(d, "D", std::numeric_limits<double>::infinity());

@@ -166,9 +166,14 @@ bool SelectedRows::next() { return next_row(*impl_->rows, impl_->sel); }
 
 SqlStatement& SelectedRows::row() { return *impl_->rows; }
 
-int SelectedRows::column(const std::string& name) {
+int SelectedRows::find_column(const std::string& name) {
   for (int i = 0; i < impl_->rows->columns(); ++i)
     if (name == impl_->rows->column_name(i)) return i;
+  return -1;
+}
+
+int SelectedRows::column(const std::string& name) {
+  if (const int i = find_column(name); i >= 0) return i;
   throw StoreError(fmt::format("results store: the selection has no column '{}'", name));
 }
 

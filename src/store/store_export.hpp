@@ -20,7 +20,7 @@ struct ExportSelection {
   std::vector<std::string> engines;  // empty: all
   std::string where;                 // an SQL condition on the exported columns, or ""
   // Runs and profiles only: non-empty keeps just the runs stored under these point keys
-  // (simulation/run_key.hpp), so an analysis sees exactly the points of its own grid.
+  // (config/run_key.hpp), so an analysis sees exactly the points of its own grid.
   std::vector<std::string> point_keys;
 };
 
@@ -37,7 +37,8 @@ class SelectedRows {
   SelectedRows& operator=(const SelectedRows&) = delete;
   bool next();
   SqlStatement& row();
-  int column(const std::string& name);  // the index of a column of the selection
+  int column(const std::string& name);       // the index of a column of the selection; throws StoreError if none
+  int find_column(const std::string& name);  // the same, or -1
 
  private:
   struct Impl;

@@ -209,14 +209,14 @@ void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_
                     MergeReport& report) {
   SqlStatement rows(source, "SELECT * FROM collapse_runs ORDER BY id");
   std::string where;
-  for (const char* c : kCollapseIdentityColumns) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
+  for (const std::string& c : collapse_identity_columns()) where += fmt::format("{}{} IS ?", where.empty() ? "" : " AND ", c);
   SqlStatement find(target, ("SELECT id FROM collapse_runs WHERE " + where).c_str());
   ResultComparer compare(target, "collapse_runs", kCollapseResultColumns);
   std::unique_ptr<SqlStatement> insert;
   while (rows.row()) {
     const std::int64_t old_id = rows.column_int(column_index(rows, "id"));
     int b = 1;
-    for (const char* c : kCollapseIdentityColumns) find.bind_value(b++, rows.column_value(column_index(rows, c)));
+    for (const std::string& c : collapse_identity_columns()) find.bind_value(b++, rows.column_value(column_index(rows, c)));
     const bool found = find.row();
     const std::int64_t existing = found ? find.column_int(0) : 0;
     find.reset();

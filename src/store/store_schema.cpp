@@ -7,31 +7,18 @@
 
 #include <fmt/format.h>
 
+#include "config/collapse_options.hpp"
+#include "config/run_options.hpp"
 #include "store/sqlite_statement.hpp"
 
 namespace granchain {
 
-const char* const kRunsColumns = R"sql((
-  id INTEGER PRIMARY KEY,
-  created_utc TEXT NOT NULL,
-  code_version TEXT NOT NULL,
-  setup TEXT NOT NULL,
-  engine TEXT NOT NULL,
-  N INTEGER NOT NULL,
-  e REAL NOT NULL,
-  k REAL NOT NULL,
-  T0 REAL NOT NULL,
-  m REAL NOT NULL,
-  d REAL NOT NULL,
-  g REAL NOT NULL,
-  T REAL NOT NULL,
-  transient REAL NOT NULL,
-  seed INTEGER NOT NULL,
-  dt_factor REAL NOT NULL,
-  damping_D REAL NOT NULL,
+namespace {
+
+// The columns of runs after the parameters: what the run measured and how.
+const char* const kRunsResultColumns = R"sql(  damping_D REAL NOT NULL,
   tau_c REAL NOT NULL,
   dt REAL,
-  sample_interval REAL NOT NULL,
   samples INTEGER NOT NULL,
   n_coll REAL NOT NULL,
   n_coll_err REAL,
@@ -47,11 +34,38 @@ const char* const kRunsColumns = R"sql((
   events INTEGER NOT NULL,
   wall_seconds REAL NOT NULL,
   result_json TEXT NOT NULL,
-  tc REAL,
-  bins INTEGER,
   stationary INTEGER,
   cpu_seconds REAL
 ))sql";
+
+const char* sql_type(ParameterType t) {
+  switch (t) {
+    case ParameterType::Integer: return "INTEGER";
+    case ParameterType::Real:
+    case ParameterType::RealList: return "REAL";  // a list parameter keeps one value per row
+    default: return "TEXT";
+  }
+}
+
+}  // namespace
+
+std::string runs_columns_sql() {
+  std::string sql = "(\n  id INTEGER PRIMARY KEY,\n  created_utc TEXT NOT NULL,\n  code_version TEXT NOT NULL,\n  setup TEXT NOT NULL,\n";
+  for (const StoredParameter& c : stored_run_parameters())
+    sql += fmt::format("  {} {}{},\n", c.parameter->store_column, sql_type(c.parameter->type), c.nullable ? "" : " NOT NULL");
+  return sql + kRunsResultColumns;
+}
+
+std::string missing_parameter_columns_sql(sqlite3* db) {
+  std::vector<std::string> have;
+  SqlStatement cols(db, "SELECT name FROM pragma_table_info('runs')");
+  while (cols.row()) have.push_back(cols.column_text(0));
+  std::string sql;
+  for (const StoredParameter& c : stored_run_parameters())
+    if (c.nullable && std::find(have.begin(), have.end(), c.parameter->store_column) == have.end())
+      sql += fmt::format("ALTER TABLE runs ADD COLUMN {} {};", c.parameter->store_column, sql_type(c.parameter->type));
+  return sql;
+}
 
 namespace {
 
@@ -81,20 +95,7 @@ CREATE TABLE IF NOT EXISTS collapse_runs(
   id INTEGER PRIMARY KEY,
   created_utc TEXT NOT NULL,
   code_version TEXT NOT NULL,
-  setup TEXT NOT NULL,
-  engine TEXT NOT NULL,
-  N INTEGER NOT NULL,
-  e REAL NOT NULL,
-  k REAL NOT NULL,
-  a REAL NOT NULL,
-  v0 REAL NOT NULL,
-  dv0 REAL NOT NULL,
-  stop_rule TEXT NOT NULL,
-  realizations INTEGER NOT NULL,
-  seed INTEGER NOT NULL,
-  dt_factor REAL NOT NULL,
-  tc REAL NOT NULL,
-  tau_c REAL NOT NULL,
+@COLLAPSE@  tau_c REAL NOT NULL,
   n_tot REAL,
   n_tot_err REAL,
   n_tot_min INTEGER NOT NULL,
@@ -120,9 +121,30 @@ CREATE TABLE IF NOT EXISTS collapse_realizations(
 // `CREATE TABLE IF NOT EXISTS runs` with the current columns where @RUNS@ stands.
 std::string schema_sql() {
   std::string sql = kSchemaRest;
-  sql.replace(sql.find("@RUNS@"), 6, std::string("CREATE TABLE IF NOT EXISTS runs") + kRunsColumns + ";");
+  sql.replace(sql.find("@RUNS@"), 6, "CREATE TABLE IF NOT EXISTS runs" + runs_columns_sql() + ";");
+  // collapse_runs: one column per stored collapse parameter (config/collapse_options.hpp)
+  std::string collapse;
+  for (const Parameter* p : stored_collapse_parameters()) collapse += fmt::format("  {} {} NOT NULL,\n", p->store_column, sql_type(p->type));
+  sql.replace(sql.find("@COLLAPSE@"), 10, collapse);
   return sql;
 }
+
+namespace {
+
+// The parameter columns of runs in schema version 3, frozen: a parameter the table gains later has a
+// nullable column that older stores lack (NULL when read, added when next written); these must be there.
+constexpr const char* kVersion3ParameterColumns[] = {"engine", "N", "e", "k", "T0", "m", "d", "g", "T", "transient",
+                                                     "sample_interval", "bins", "dt_factor", "tc", "seed"};
+
+bool added_after_version_3(const std::string& name) {
+  for (const char* c : kVersion3ParameterColumns)
+    if (name == c) return false;
+  for (const StoredParameter& c : stored_run_parameters())
+    if (c.nullable && c.parameter->store_column == name) return true;
+  return false;
+}
+
+}  // namespace
 
 std::string missing_schema_part(sqlite3* db, int version) {
   sqlite3* ref = nullptr;
@@ -146,6 +168,7 @@ std::string missing_schema_part(sqlite3* db, int version) {
     SqlStatement want(ref, ("SELECT name FROM pragma_table_info('" + table + "')").c_str());
     while (missing.empty() && want.row()) {
       const std::string c = want.column_text(0);
+      if (table == "runs" && added_after_version_3(c)) continue;
       if (version == 1 && table == "runs" && (c == "tc" || c == "bins")) continue;
       if (version <= 2 && table == "runs" && (c == "stationary" || c == "cpu_seconds")) continue;
       if (std::find(have.begin(), have.end(), c) == have.end()) missing = fmt::format("the column '{}' of the table '{}'", c, table);

@@ -8,6 +8,7 @@
 
 #include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
+#include "simulation/driven_run.hpp"
 #include "store/store_export.hpp"
 
 namespace granchain {
@@ -16,10 +17,7 @@ namespace granchain {
 struct StoredRun {
   std::int64_t id = 0;
   std::string setup;                     // "driven_column"
-  EngineChoice engine;                   // kind, dt_factor, hard.tc (NaN where not stored)
-  ChainParameters params;                // N, e, k (infinite for hard spheres), kT0, m, d, g
-  double T = 0, transient = 0;
-  std::uint64_t seed = 0;
+  RunSpec spec;                          // every stored parameter (k infinite for hard spheres); defaults where NULL
   double n_coll = 0, n_coll_err = 0;
   double wall_seconds = 0;
   double cpu_seconds = 0;                // the run's thread CPU time; NaN for runs stored before it was recorded
@@ -32,8 +30,7 @@ struct StoredRun {
 struct StoredProfile {
   std::int64_t run_id = 0;
   std::string setup;
-  EngineKind engine = EngineKind::Exact;
-  ChainParameters params;
+  RunSpec spec;  // the run's stored parameters the profiles export holds (engine, model, T, transient, seed, dt_factor)
   int i = 0;  // particle, 1 = bottom
   double z_std = 0, z_std_err = 0, K_mean = 0, K_err = 0;
 };

@@ -10,7 +10,7 @@
 #include "config/value_list.hpp"
 #include "engines/engine_registry.hpp"
 #include "model/random.hpp"
-#include "simulation/run_key.hpp"
+#include "config/run_key.hpp"
 
 namespace granchain {
 

@@ -28,7 +28,7 @@ struct SweepDefinition {
 struct SweepPoint {
   RunSpec spec;                 // complete, seed included
   int replica = 0;              // 0 .. replicas-1
-  std::string key;              // identity of the run in the store (simulation/run_key.hpp)
+  std::string key;              // identity of the run in the store (config/run_key.hpp)
   double cost = 0.0;            // estimated seconds of one core (sweep/cost_model.hpp)
 };
 

@@ -2,6 +2,9 @@
 // The identity of a driven-column run: every parameter that can change its result, numbers in
 // their shortest exact decimal form. Two runs with one key (seed included) give identical results,
 // whichever thread, rank or machine ran them; the results store and sweeps use it to find a point.
+// The key is read off the parameter table (config/run_options.cpp): each entry with a store
+// column enters as `column=value`, in the order of its part of the identity (RunIdentity: engine,
+// physics, window, engine options, seed), where it acts.
 #include <string>
 
 #include "simulation/driven_run.hpp"
