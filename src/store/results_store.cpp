@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "config/run_options.hpp"
+#include "store/run_columns.hpp"
 #include "store/run_json.hpp"
 #include "config/run_key.hpp"
 #include "store/sqlite_statement.hpp"
@@ -200,7 +201,7 @@ void ResultsStore::open_read_write() {
     exec(schema_sql().c_str());
     if (schema_version() == 1) migrate_from_version_1();
     if (schema_version() == 2) migrate_from_version_2();
-    exec(missing_parameter_columns_sql(db_).c_str());
+    exec(missing_runs_columns_sql(db_).c_str());
     exec("COMMIT");
     exec("PRAGMA foreign_keys = ON");
   } catch (...) {
@@ -349,16 +350,17 @@ std::map<std::string, ResultsStore::PointSummary> ResultsStore::point_summaries(
 std::int64_t ResultsStore::append_run(const RunResult& r) {
   {
     // The provenance, the stored parameters (config/run_options.hpp, NULL where one does not act),
-    // then the results: the columns of store_schema.cpp in their order.
+    // then the results (store/run_columns.hpp): the columns of store_schema.cpp in their order.
     static const std::string insert = [] {
       std::string names = "created_utc, code_version, setup", marks = "?,?,?";
       for (const StoredParameter& c : stored_run_parameters()) {
         names += ", " + c.parameter->store_column;
         marks += ",?";
       }
-      names += ", damping_D, tau_c, dt, samples, n_coll, n_coll_err, n_coll_blocks, n_coll_converged, floor_rate, floor_rate_err, "
-               "pp_rate, pp_rate_err, particle_collisions, floor_hits, steps, events, wall_seconds, result_json, stationary, cpu_seconds";
-      marks += ",?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?";
+      for (const ResultColumn& c : run_result_columns()) {
+        names += std::string(", ") + c.name;
+        marks += ",?";
+      }
       return "INSERT INTO runs(" + names + ") VALUES(" + marks + ")";
     }();
     SqlStatement run(db_, insert.c_str());
@@ -375,27 +377,7 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
       else if (const auto* n = std::get_if<long long>(&v)) run.bind(c++, static_cast<std::int64_t>(*n));
       else run.bind(c++, std::get<double>(v));
     }
-    run.bind(c++, r.law.D);
-    run.bind(c++, r.law.tau_c);
-    if (r.time_step > 0) run.bind(c++, r.time_step);
-    else run.bind_null(c++);  // an event-driven engine has no step
-    run.bind(c++, static_cast<std::int64_t>(r.samples));
-    run.bind(c++, r.n_coll.value);
-    run.bind(c++, r.n_coll.error);
-    run.bind(c++, static_cast<std::int64_t>(r.n_coll.blocks));
-    run.bind(c++, static_cast<std::int64_t>(r.n_coll.converged));
-    run.bind(c++, r.floor_rate.value);
-    run.bind(c++, r.floor_rate.error);
-    run.bind(c++, r.pp_rate.value);
-    run.bind(c++, r.pp_rate.error);
-    run.bind(c++, static_cast<std::int64_t>(r.particle_collisions));
-    run.bind(c++, static_cast<std::int64_t>(r.floor_hits));
-    run.bind(c++, static_cast<std::int64_t>(r.steps));
-    run.bind(c++, static_cast<std::int64_t>(r.events));
-    run.bind(c++, r.wall_seconds);
-    run.bind(c++, run_result_to_json(r).dump());
-    run.bind(c++, static_cast<std::int64_t>(r.stationary() ? 1 : 0));
-    run.bind(c++, r.cpu_seconds);  // NaN (not measured) is stored as NULL
+    for (const ResultColumn& column : run_result_columns()) column.bind(run, c++, r);
     run.run();
     const std::int64_t id = sqlite3_last_insert_rowid(db_);
 

@@ -9,34 +9,12 @@
 
 #include "config/collapse_options.hpp"
 #include "config/run_options.hpp"
+#include "store/run_columns.hpp"
 #include "store/sqlite_statement.hpp"
 
 namespace granchain {
 
 namespace {
-
-// The columns of runs after the parameters: what the run measured and how.
-const char* const kRunsResultColumns = R"sql(  damping_D REAL NOT NULL,
-  tau_c REAL NOT NULL,
-  dt REAL,
-  samples INTEGER NOT NULL,
-  n_coll REAL NOT NULL,
-  n_coll_err REAL,
-  n_coll_blocks INTEGER NOT NULL,
-  n_coll_converged INTEGER NOT NULL,
-  floor_rate REAL NOT NULL,
-  floor_rate_err REAL,
-  pp_rate REAL NOT NULL,
-  pp_rate_err REAL,
-  particle_collisions INTEGER NOT NULL,
-  floor_hits INTEGER NOT NULL,
-  steps INTEGER NOT NULL,
-  events INTEGER NOT NULL,
-  wall_seconds REAL NOT NULL,
-  result_json TEXT NOT NULL,
-  stationary INTEGER,
-  cpu_seconds REAL
-))sql";
 
 const char* sql_type(ParameterType t) {
   switch (t) {
@@ -53,17 +31,24 @@ std::string runs_columns_sql() {
   std::string sql = "(\n  id INTEGER PRIMARY KEY,\n  created_utc TEXT NOT NULL,\n  code_version TEXT NOT NULL,\n  setup TEXT NOT NULL,\n";
   for (const StoredParameter& c : stored_run_parameters())
     sql += fmt::format("  {} {}{},\n", c.parameter->store_column, sql_type(c.parameter->type), c.nullable ? "" : " NOT NULL");
-  return sql + kRunsResultColumns;
+  const auto& results = run_result_columns();
+  for (std::size_t i = 0; i < results.size(); ++i)
+    sql += fmt::format("  {} {}{}\n", results[i].name, results[i].declaration, i + 1 < results.size() ? "," : "");
+  return sql + ")";
 }
 
-std::string missing_parameter_columns_sql(sqlite3* db) {
+std::string missing_runs_columns_sql(sqlite3* db) {
   std::vector<std::string> have;
   SqlStatement cols(db, "SELECT name FROM pragma_table_info('runs')");
   while (cols.row()) have.push_back(cols.column_text(0));
+  const auto lacks = [&](const std::string& name) { return std::find(have.begin(), have.end(), name) == have.end(); };
   std::string sql;
   for (const StoredParameter& c : stored_run_parameters())
-    if (c.nullable && std::find(have.begin(), have.end(), c.parameter->store_column) == have.end())
+    if (c.nullable && lacks(c.parameter->store_column))
       sql += fmt::format("ALTER TABLE runs ADD COLUMN {} {};", c.parameter->store_column, sql_type(c.parameter->type));
+  for (const ResultColumn& c : run_result_columns())
+    if (lacks(c.name) && std::string(c.declaration).find("NOT NULL") == std::string::npos)
+      sql += fmt::format("ALTER TABLE runs ADD COLUMN {} {};", c.name, c.declaration);
   return sql;
 }
 
@@ -131,17 +116,19 @@ std::string schema_sql() {
 
 namespace {
 
-// The parameter columns of runs in schema version 3, frozen: a parameter the table gains later has a
-// nullable column that older stores lack (NULL when read, added when next written); these must be there.
-constexpr const char* kVersion3ParameterColumns[] = {"engine", "N", "e", "k", "T0", "m", "d", "g", "T", "transient",
-                                                     "sample_interval", "bins", "dt_factor", "tc", "seed"};
+// The columns of runs in schema version 3, frozen: a parameter or a result the tables gain later
+// has a nullable column that older stores lack (NULL when read, added when next written); these
+// must be there.
+constexpr const char* kVersion3RunsColumns[] = {
+    "id", "created_utc", "code_version", "setup", "engine", "N", "e", "k", "T0", "m", "d", "g", "T", "transient",
+    "sample_interval", "bins", "dt_factor", "tc", "seed", "damping_D", "tau_c", "dt", "samples", "n_coll", "n_coll_err",
+    "n_coll_blocks", "n_coll_converged", "floor_rate", "floor_rate_err", "pp_rate", "pp_rate_err", "particle_collisions",
+    "floor_hits", "steps", "events", "wall_seconds", "result_json", "stationary", "cpu_seconds"};
 
 bool added_after_version_3(const std::string& name) {
-  for (const char* c : kVersion3ParameterColumns)
+  for (const char* c : kVersion3RunsColumns)
     if (name == c) return false;
-  for (const StoredParameter& c : stored_run_parameters())
-    if (c.nullable && c.parameter->store_column == name) return true;
-  return false;
+  return true;
 }
 
 }  // namespace
