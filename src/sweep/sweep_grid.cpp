@@ -83,59 +83,78 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
       scalar[name] = value;
   }
   if (scalar.count("seed")) throw InputError("--seed: a sweep takes a base seed (--seed of sweep), not a run seed");
-  const auto Ns = grid_values(def, "N");
-  const auto es = grid_values(def, "e");
-  const auto ks = grid_values(def, "k");
-  const auto T0s = grid_values(def, "T0");
-  const auto Ts = grid_values(def, "T");
-  const auto engines = grid_values(def, "engine");
+  // Every sweep axis of the parameter table (sweep_grid_parameters(), table order), each a list of
+  // values or one "absent" value. The engine axis decides, per point, which engine-scoped
+  // parameters apply: the hard-sphere engine takes no Soft axis (k) and only it takes a Hard one (tc).
+  const std::vector<std::string>& names = sweep_grid_parameters();
+  std::vector<const Parameter*> axes;
+  std::vector<std::vector<AxisValue>> values;
+  std::size_t engine_axis = names.size();
+  for (const std::string& name : names) {
+    axes.push_back(find_parameter(run_parameters(), name));
+    values.push_back(grid_values(def, name));
+    if (axes.back()->identity == RunIdentity::Engine) engine_axis = axes.size() - 1;
+  }
   // An unknown name is refused by resolve_run_options below, with the valid ones.
   const auto is_hard = [](const AxisValue& name) {
     const EngineInfo* e = name.given ? find_engine(name.value.text()) : &granchain::engines().front();
     return e != nullptr && e->hard_spheres;
   };
-  const bool any_hard = std::any_of(engines.begin(), engines.end(), is_hard);
+  const auto hard_at = [&](const std::vector<std::size_t>& at) {
+    return engine_axis < names.size() ? is_hard(values[engine_axis][at[engine_axis]]) : is_hard(AxisValue{});
+  };
+  bool any_hard = false;
+  for (std::size_t i = 0; engine_axis < names.size() && i < values[engine_axis].size(); ++i) any_hard |= is_hard(values[engine_axis][i]);
+  if (engine_axis == names.size()) any_hard = is_hard(AxisValue{});
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
 
   std::vector<SweepPoint> points;
-  // Counted in double: six lists of up to 100000 values and 1000000 replicas multiply to more
-  // than a 64-bit integer holds, and a wrapped product would pass the limit.
+  // Counted in double: lists of up to 100000 values and 1000000 replicas multiply to more than a
+  // 64-bit integer holds, and a wrapped product would pass the limit.
   constexpr double kMaxPoints = 10'000'000;
-  const double expected = static_cast<double>(Ns.size()) * static_cast<double>(es.size()) * static_cast<double>(ks.size()) *
-                          static_cast<double>(T0s.size()) * static_cast<double>(Ts.size()) * static_cast<double>(engines.size()) *
-                          static_cast<double>(def.replicas);
+  double expected = static_cast<double>(def.replicas);
+  std::string product;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    expected *= static_cast<double>(values[i].size());
+    product += "--" + names[i] + " x ";
+  }
   if (expected > kMaxPoints)
-    throw InputError(fmt::format("the sweep has {:.4g} points (values of --N x --e x --k x --T0 x --T x --engine x --replicas); valid: at most {:.0f}",
-                                 expected, kMaxPoints));
-  for (const auto& engine : engines) {
-    const bool hard = is_hard(engine);
-    for (const auto& N : Ns)
-      for (const auto& e : es)
-        for (std::size_t ik = 0; ik < (hard ? 1 : ks.size()); ++ik)
-          for (const auto& T0 : T0s)
-            for (const auto& T : Ts) {
-              std::map<std::string, RawValue> raw = scalar;
-              if (!hard) raw.erase("tc");
-              const auto set = [&raw](const char* name, const AxisValue& v) {
-                if (v.given) raw[name] = v.value;
-              };
-              set("engine", engine);
-              set("N", N);
-              set("e", e);
-              if (!hard) set("k", ks[ik]);
-              set("T0", T0);
-              set("T", T);
-              RunSpec spec = resolve_run_options(raw).spec;
-              for (int r = 0; r < def.replicas; ++r) {
-                SweepPoint p;
-                p.spec = spec;
-                p.spec.seed = point_seed(def.base_seed, spec, r);
-                p.replica = r;
-                p.key = point_key(p.spec);
-                p.cost = estimate_cost_seconds(p.spec);
-                points.push_back(std::move(p));
-              }
-            }
+    throw InputError(fmt::format("the sweep has {:.4g} points (values of {}--replicas); valid: at most {:.0f}", expected, product,
+                                 kMaxPoints));
+  std::vector<std::size_t> at(names.size(), 0);  // the current value of each axis
+  for (;;) {
+    const bool hard = hard_at(at);
+    bool skip = false;  // a Soft axis beyond its first value under the hard engine repeats a point
+    std::map<std::string, RawValue> raw = scalar;
+    for (const auto& [name, value] : scalar) {
+      const Parameter* p = find_parameter(run_parameters(), name);
+      if (p && p->engines == EngineScope::Hard && !hard) raw.erase(name);
+    }
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (hard && axes[i]->engines == EngineScope::Soft) {
+        skip |= at[i] > 0;
+        continue;
+      }
+      if (values[i][at[i]].given) raw[names[i]] = values[i][at[i]].value;
+    }
+    if (!skip) {
+      RunSpec spec = resolve_run_options(raw).spec;
+      for (int r = 0; r < def.replicas; ++r) {
+        SweepPoint p;
+        p.spec = spec;
+        p.spec.seed = point_seed(def.base_seed, spec, r);
+        p.replica = r;
+        p.key = point_key(p.spec);
+        p.cost = estimate_cost_seconds(p.spec);
+        points.push_back(std::move(p));
+      }
+    }
+    std::size_t i = 0;  // the next combination, the first axis fastest
+    for (; i < at.size(); ++i) {
+      if (++at[i] < values[i].size()) break;
+      at[i] = 0;
+    }
+    if (i == at.size()) break;
   }
   std::sort(points.begin(), points.end(), [](const SweepPoint& a, const SweepPoint& b) {
     return a.cost != b.cost ? a.cost > b.cost : a.key < b.key;
