@@ -41,7 +41,7 @@ long long as_integer(const TypedValue& v) {
   throw InputError(fmt::format("'{}' is not a number", std::get<std::string>(v)));
 }
 
-// A real parameter held by `field` of the spec, always acting.
+// A real (integer) parameter held by `field` of the spec: `field(spec)` is a reference to it.
 template <class Field>
 Definition real(Parameter p, RunIdentity part, Field field) {
   p.type = ParameterType::Real;
@@ -93,13 +93,10 @@ const std::vector<Definition>& definitions() {
     d.push_back(real({"transient", {}, "sqrt(d / g)", "discarded time before the measuring window", "transient >= 0", "T/10",
                       kUseDriven, EngineScope::Any, false, "transient", [](double x) { return x >= 0; }},
                      I::Window, [](auto& s) -> auto& { return s.transient; }));
-    {
-      Definition seed = integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807",
-                                 shown(static_cast<double>(def.spec.seed)), kUseDriven | kUseTrace, EngineScope::Any, false, "seed",
-                                 [](double x) { return x >= 0; }},
-                                I::Seed, [](auto& s) -> auto& { return s.seed; });
-      d.push_back(std::move(seed));
-    }
+    d.push_back(integer({"seed", {}, "", "random seed (initial state and floor)", "integer 0 <= seed <= 9223372036854775807",
+                         shown(static_cast<double>(def.spec.seed)), kUseDriven | kUseTrace, EngineScope::Any, false, "seed",
+                         [](double x) { return x >= 0; }},
+                        I::Seed, [](auto& s) -> auto& { return s.seed; }));
     {
       const std::string names = engine_name_list();
       Parameter p{"engine", ParameterType::Name, "", "time integrator (reference = the paper's 2nd-order Runge-Kutta with dt = tau_c/dt-factor)",
