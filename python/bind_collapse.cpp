@@ -32,7 +32,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   const std::optional<py::object> db = take(args, "db");
   const std::optional<py::object> record = take(args, "record-collisions");
   std::map<std::string, RawValue> raw;
-  for (const auto& [name, value] : args) raw[name] = keyword_value(value);
+  for (const auto& [name, value] : args) raw[name] = keyword_value(value, find_parameter(collapse_parameters(), name));
   // The command's default k is a list; a call counts one k, which a soft engine needs given.
   const EngineInfo* engine = raw.count("engine") ? find_engine(raw.at("engine").text()) : &engines().front();
   if (engine != nullptr && !engine->hard_spheres && !raw.count("k"))

@@ -145,7 +145,7 @@ py::dict run(const py::kwargs& kwargs) {
   const std::optional<py::object> db = take(args, "db");
 
   std::map<std::string, RawValue> raw;
-  for (const auto& [name, value] : args) raw[name] = keyword_value(value);
+  for (const auto& [name, value] : args) raw[name] = keyword_value(value, find_parameter(run_parameters(), name));
   if (db) raw["db"] = RawValue{path_text(*db, "--db"), ""};
   RunOptions opts = resolve_run_options(raw);  // InputError -> ValueError, the CLI's message
   opts.use_db = db.has_value();

@@ -15,10 +15,11 @@ namespace granchain::python {
 namespace py = pybind11;
 
 // A keyword argument as a typed value (config/parameter.hpp): a Python int (or anything with
-// __index__) as an integer, a float (or anything with __float__) as a real number, a str as
-// text; True and False, and integers beyond 64 bits, as their text, which every numeric parameter
-// refuses with the CLI's message.
-RawValue keyword_value(const py::handle& value);
+// __index__: numpy integers) as an integer, a float (or anything with __float__: numpy floats, a
+// 0-d array) as a real number, or as an integer where `parameter` is an integer one and the value
+// whole (N=25.0), a str as text; True and False, and integers beyond 64 bits, as their text, which
+// every numeric parameter refuses with the CLI's message.
+RawValue keyword_value(const py::handle& value, const Parameter* parameter);
 
 // The entries of a parameter table (config/parameter.hpp) that the Python module takes, as dicts:
 // name, help, type, unit, range, default, engines, sweep_axis, store_column.

@@ -1,25 +1,36 @@
 // Keyword arguments as typed values, parameter tables as dicts (bindings.hpp).
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "bindings.hpp"
 
 namespace granchain::python {
 
-RawValue keyword_value(const py::handle& value) {
+RawValue keyword_value(const py::handle& value, const Parameter* parameter) {
   PyObject* v = value.ptr();
   if (PyUnicode_Check(v)) return RawValue{value.cast<std::string>()};
   if (PyBool_Check(v)) return RawValue{std::string(py::str(value))};
-  if (PyIndex_Check(v)) {
+  if (PyIndex_Check(v)) {  // int, numpy integers (a float array's __index__ fails: read as a float below)
     py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(v));
-    int overflow = 0;
-    const long long x = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-    if (overflow == 0 && !(x == -1 && PyErr_Occurred())) return RawValue{x};
+    if (i) {
+      int overflow = 0;
+      const long long x = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+      if (overflow == 0 && !(x == -1 && PyErr_Occurred())) return RawValue{x};
+      PyErr_Clear();
+      return RawValue{std::string(py::str(i))};
+    }
     PyErr_Clear();
-    return RawValue{std::string(py::str(i))};
   }
-  if (PyFloat_Check(v) || PyObject_HasAttrString(v, "__float__")) {
+  if (PyFloat_Check(v) || PyObject_HasAttrString(v, "__float__")) {  // float, numpy floats, 0-d arrays
     const double x = PyFloat_AsDouble(v);
-    if (!(x == -1.0 && PyErr_Occurred())) return RawValue{x};
+    if (!(x == -1.0 && PyErr_Occurred())) {
+      // An integer parameter written as a whole float (N=25.0, np.float32(4)) is that integer, as
+      // Python users write it; a fraction (N=2.5) stays a real and is refused by the reading.
+      if (parameter && parameter->type == ParameterType::Integer && std::isfinite(x) && x == std::floor(x) && std::abs(x) < 0x1p53)
+        return RawValue{static_cast<long long>(x)};
+      return RawValue{x};
+    }
     PyErr_Clear();
   }
   return RawValue{std::string(py::str(value))};

@@ -56,6 +56,18 @@ def test_numbers_and_text_give_the_same_run():
     assert a["z_std"].tolist() == b["z_std"].tolist() == c["z_std"].tolist()
 
 
+def test_numbers_as_python_users_write_them_give_the_same_run():
+    # A whole float for an integer parameter, numpy scalars of any width and 0-d arrays are the
+    # numbers they hold; a fraction for an integer parameter is still refused.
+    a = granchain.run(N=3, e=0.8, k=1e5, T=30, seed=2)
+    d = granchain.run(N=3.0, e=np.array(0.8), k=np.float32(1e5), T=np.array(30), seed=np.int32(2))
+    assert a["n_coll"] == d["n_coll"]
+    assert a["z_std"].tolist() == d["z_std"].tolist()
+    for bad in (2.5, np.array(2.5), np.float64(3.5)):
+        with pytest.raises(ValueError, match="is not an integer"):
+            granchain.run(N=bad, T=5)
+
+
 def test_defaults_are_the_clis():
     r = granchain.run(N=2, T=10)
     p = r["parameters"]
