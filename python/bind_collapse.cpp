@@ -26,7 +26,7 @@ struct CollapseRequest {
 };
 
 // One e and one k, read and checked by the command's own resolve_collapse_options.
-CollapseRequest collapse_request(const py::kwargs& kwargs) {
+CollapseRequest collapse_request_checked(const py::kwargs& kwargs) {
   auto args = flag_arguments(kwargs);
   CollapseRequest q;
   const std::optional<py::object> db = take(args, "db");
@@ -46,7 +46,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   q.spec.params.e = opts.es.front();
   q.spec.params.k = opts.ks.front();
   if (db) {
-    q.db = path_text(*db, "--db");
+    q.db = path_text(*db, "db");
     try {
       ResultsStore::preflight(q.db);
     } catch (const StoreError& err) {
@@ -59,6 +59,15 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
     q.record = record->cast<bool>();
   }
   return q;
+}
+
+// Bad input named by the keyword, as a Python caller wrote it (keyword_message).
+CollapseRequest collapse_request(const py::kwargs& kwargs) {
+  try {
+    return collapse_request_checked(kwargs);
+  } catch (const InputError& e) {
+    throw InputError(keyword_message(e.what(), collapse_parameters(), {"record-collisions"}));
+  }
 }
 
 // One numpy column: get(item) of every item (launch outcomes, recorded collisions), in order.

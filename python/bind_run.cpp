@@ -136,7 +136,7 @@ ProgressCallback progress_callback(const std::optional<py::object>& user) {
   };
 }
 
-py::dict run(const py::kwargs& kwargs) {
+py::dict run_keywords(const py::kwargs& kwargs) {
   auto args = flag_arguments(kwargs);
   const std::optional<py::object> audit = take(args, "audit");
   const std::optional<py::object> progress = take(args, "progress");
@@ -146,7 +146,7 @@ py::dict run(const py::kwargs& kwargs) {
 
   std::map<std::string, RawValue> raw;
   for (const auto& [name, value] : args) raw[name] = keyword_value(value, find_parameter(run_parameters(), name));
-  if (db) raw["db"] = RawValue{path_text(*db, "--db"), ""};
+  if (db) raw["db"] = RawValue{path_text(*db, "db"), ""};
   RunOptions opts = resolve_run_options(raw);  // InputError -> ValueError, the CLI's message
   opts.use_db = db.has_value();
   if (audit && !audit->is_none() && !PyBool_Check(audit->ptr()))
@@ -160,7 +160,7 @@ py::dict run(const py::kwargs& kwargs) {
     try {
       ResultsStore::preflight(opts.db_path);
     } catch (const StoreError& e) {
-      throw py::value_error(e.what());  // the CLI's exit 2: bad input, nothing run
+      throw InputError(e.what());  // the CLI's exit 2: bad input, nothing run (ValueError)
     }
   }
 
@@ -211,6 +211,15 @@ py::dict run(const py::kwargs& kwargs) {
   py::dict d = result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
   d["reused"] = reused;
   return d;
+}
+
+// Bad input named by the keyword, as a Python caller wrote it (keyword_message).
+py::dict run(const py::kwargs& kwargs) {
+  try {
+    return run_keywords(kwargs);
+  } catch (const InputError& e) {
+    throw InputError(keyword_message(e.what(), run_parameters(), {"audit", "progress"}));
+  }
 }
 
 }  // namespace

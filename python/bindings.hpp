@@ -21,6 +21,12 @@ namespace py = pybind11;
 // every numeric parameter refuses with the CLI's message.
 RawValue keyword_value(const py::handle& value, const Parameter* parameter);
 
+// A message of bad input as a Python caller reads it: each parameter of `table` (and each name of
+// `extra`) written as a flag, "--dt-factor", becomes its keyword, "dt_factor", and a hyphenated
+// name standing alone (in a valid range) the same: "dt_factor = 5 is out of range; valid range:
+// 10 <= dt_factor <= 1e6".
+std::string keyword_message(std::string message, const std::vector<Parameter>& table, const std::vector<std::string>& extra = {});
+
 // The entries of a parameter table (config/parameter.hpp) that the Python module takes, as dicts:
 // name, help, type, unit, range, default, engines, sweep_axis, store_column.
 py::list parameter_list(const std::vector<Parameter>& table);

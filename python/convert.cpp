@@ -1,6 +1,8 @@
 // Keyword arguments as typed values, parameter tables as dicts (bindings.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "bindings.hpp"
@@ -34,6 +36,36 @@ RawValue keyword_value(const py::handle& value, const Parameter* parameter) {
     PyErr_Clear();
   }
   return RawValue{std::string(py::str(value))};
+}
+
+std::string keyword_message(std::string message, const std::vector<Parameter>& table, const std::vector<std::string>& extra) {
+  std::vector<std::string> names = extra;
+  for (const Parameter& p : table) names.push_back(p.name);
+  std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
+  const auto name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; };
+  const auto keyword = [](std::string n) {
+    for (char& c : n)
+      if (c == '-') c = '_';
+    return n;
+  };
+  // "--name" -> "name" (as a keyword), then a hyphenated name standing alone ("dt-factor" in a range).
+  for (const bool flag : {true, false})
+    for (const std::string& n : names) {
+      if (!flag && n.find('-') == std::string::npos) continue;
+      const std::string from = flag ? "--" + n : n;
+      for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at)) {
+        const std::size_t end = at + from.size();
+        const bool whole = (end == message.size() || !name_char(message[end])) && (flag || at == 0 || !name_char(message[at - 1]));
+        if (!whole) {
+          at = end;
+          continue;
+        }
+        const std::string to = keyword(n);
+        message.replace(at, from.size(), to);
+        at += to.size();
+      }
+    }
+  return message;
 }
 
 py::list parameter_list(const std::vector<Parameter>& table) {

@@ -1,7 +1,8 @@
 // The extension _granchain, imported by the package granchain (python/granchain/__init__.py).
 // C++ errors become Python exceptions: bad input (InputError) ValueError with the CLI's one-line
-// message; an unphysical simulation granchain.UnphysicalStateError (a RuntimeError, the CLI's exit
-// 3); a store that cannot be written granchain.StoreError (an OSError, the CLI's exit 4).
+// message (run and collapse name parameters by keyword: keyword_message); an unphysical simulation
+// granchain.UnphysicalStateError (a RuntimeError, the CLI's exit 3); a store that cannot be written
+// granchain.StoreError (an OSError, the CLI's exit 4).
 #include "bindings.hpp"
 #include "config/input_error.hpp"
 #include "engines/engine.hpp"

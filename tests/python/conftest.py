@@ -1,6 +1,7 @@
 """Shared fixtures of the Python module's tests: the module itself and the granchain executable."""
 
 import json
+import re
 import os
 import pathlib
 import subprocess
@@ -44,3 +45,14 @@ def cli_error(proc):
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("granchain: error: "), proc.stderr
     return lines[0][len("granchain: error: "):]
+
+
+def keyword_form(message, names):
+    """The CLI's message as the module words it: a flag "--dt-factor" becomes the keyword
+    "dt_factor", and a hyphenated parameter name standing alone (in a range) the same."""
+    for name in sorted(names, key=len, reverse=True):
+        message = re.sub(r"--" + re.escape(name) + r"(?![\w-])", name.replace("-", "_"), message)
+    for name in sorted(names, key=len, reverse=True):
+        if "-" in name:
+            message = re.sub(r"(?<![\w-])" + re.escape(name) + r"(?![\w-])", name.replace("-", "_"), message)
+    return message
