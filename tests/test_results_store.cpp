@@ -244,3 +244,27 @@ TEST(ResultsStore, ReadOnlyAccessReadsAndNeverWrites) {
   EXPECT_EQ(query_double(src, "SELECT value FROM meta WHERE key = 'schema_version'"), 1.0);
   sqlite3_close(src);
 }
+
+// A run read back from the store has the blocking verdicts of its profile errors (whether each
+// found a plateau) as it ran, so that reading it back never warns of a plateau it had, nor hides
+// one it lacked: a short window (T = 20) leaves some errors without a plateau.
+TEST(ResultsStore, ARunReadBackKeepsThePlateauVerdictsOfItsProfiles) {
+  TempDir dir;
+  const std::string path = (dir.path / "r.db").string();
+  const RunResult r = small_run();
+  int without = 0;
+  for (const ParticleProfile& p : r.profiles) without += !p.z_mean.converged + !p.z_std.converged + !p.kinetic.converged;
+  ResultsStore store(path);
+  store.insert_run(r);
+  const auto back = store.read_back_run(r.spec);
+  ASSERT_TRUE(back.has_value());
+  ASSERT_EQ(back->result.profiles.size(), r.profiles.size());
+  for (std::size_t i = 0; i < r.profiles.size(); ++i) {
+    EXPECT_EQ(back->result.profiles[i].z_mean.converged, r.profiles[i].z_mean.converged) << i;
+    EXPECT_EQ(back->result.profiles[i].z_std.converged, r.profiles[i].z_std.converged) << i;
+    EXPECT_EQ(back->result.profiles[i].kinetic.converged, r.profiles[i].kinetic.converged) << i;
+  }
+  // Both verdicts occur (5 of the 12 errors have no plateau with this seed), so the check is not vacuous.
+  EXPECT_GT(without, 0);
+  EXPECT_LT(without, static_cast<int>(3 * r.profiles.size()));
+}

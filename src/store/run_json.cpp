@@ -41,7 +41,11 @@ json run_result_to_json(const RunResult& r) {
                         {"z_std", p.z_std.value},
                         {"z_std_err", p.z_std.error},
                         {"K", p.kinetic.value},
-                        {"K_err", p.kinetic.error}});
+                        {"K_err", p.kinetic.error},
+                        // whether each error's blocking found a plateau (else a lower bound)
+                        {"z_mean_plateau", p.z_mean.converged},
+                        {"z_std_plateau", p.z_std.converged},
+                        {"K_plateau", p.kinetic.converged}});
   }
   json j{{"code_version", code_version()},
               {"provenance", provenance_json()},
@@ -112,10 +116,12 @@ RunResult run_result_from_json(const json& j) {
   r.pp_rate = estimate_from_json(o.at("pp_rate"));
   r.particle_collisions = o.at("particle_collisions").get<std::uint64_t>();
   r.floor_hits = o.at("floor_hits").get<std::uint64_t>();
+  // The plateau verdicts of the profile errors; runs stored before they were kept read back without
+  // a verdict against them (true), so that a run read back never warns of what it cannot know.
   for (const json& q : j.at("profiles")) {
-    r.profiles.push_back(ParticleProfile{Estimate{real_or(q, "z_mean", nan), real_or(q, "z_mean_err", nan), 0, false},
-                                         Estimate{real_or(q, "z_std", nan), real_or(q, "z_std_err", nan), 0, false},
-                                         Estimate{real_or(q, "K", nan), real_or(q, "K_err", nan), 0, false}});
+    r.profiles.push_back(ParticleProfile{Estimate{real_or(q, "z_mean", nan), real_or(q, "z_mean_err", nan), 0, q.value("z_mean_plateau", true)},
+                                         Estimate{real_or(q, "z_std", nan), real_or(q, "z_std_err", nan), 0, q.value("z_std_plateau", true)},
+                                         Estimate{real_or(q, "K", nan), real_or(q, "K_err", nan), 0, q.value("K_plateau", true)}});
   }
   // Runs stored before the stationarity check have none: they read back as stationary with z = NaN.
   auto halves = [nan](const json& h) {
