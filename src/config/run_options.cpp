@@ -380,6 +380,12 @@ const std::vector<const Definition*>& stored_definitions() {
   return stored;
 }
 
+bool acts(const Parameter& p, const EngineInfo& engine) {
+  if (p.engines == EngineScope::Hard) return engine.hard_spheres;
+  if (p.engines == EngineScope::TimeStepped) return engine.time_stepped;
+  return true;  // k too: the hard-sphere engine runs at k = infinity
+}
+
 }  // namespace
 
 const std::vector<StoredParameter>& stored_run_parameters() {
@@ -391,11 +397,6 @@ const std::vector<StoredParameter>& stored_run_parameters() {
   return out;
 }
 
-bool acts(const Parameter& p, const EngineInfo& engine) {
-  if (p.engines == EngineScope::Hard) return engine.hard_spheres;
-  if (p.engines == EngineScope::TimeStepped) return engine.time_stepped;
-  return true;  // k too: the hard-sphere engine runs at k = infinity
-}
 
 std::vector<StoredValue> stored_values(const RunSpec& spec) {
   const EngineInfo& engine = engine_info(spec.engine.kind);

@@ -30,12 +30,10 @@ struct StoredParameter {
 // The stored parameters in the order of a run's identity (RunIdentity, then table order): the
 // order of the point key and of the store's parameter columns.
 const std::vector<StoredParameter>& stored_run_parameters();
-// Whether a parameter acts in a run of this engine: a Hard one (tc) only for the hard-sphere
-// engine, a TimeStepped one (dt_factor) only for the time-stepped engines, any other always (k
-// too: the hard-sphere engine runs at k = infinity). Only what acts enters a run's point key.
-bool acts(const Parameter& p, const EngineInfo& engine);
 // The value of each stored parameter in a run (aligned with stored_run_parameters()) and whether
-// it acts there: by its engine scope (acts()) and, where its entry says so, by the run's other
+// it acts there: by its engine scope (a Hard one, tc, only for the hard-sphere engine, a TimeStepped
+// one, dt_factor, only for the time-stepped engines, any other always: k too, infinite for hard
+// spheres) and, where its entry says so, by the run's other
 // parameters (a drive's amplitude only with that drive). The store keeps NULL for a nullable one
 // that does not act (tc of a soft engine).
 struct StoredValue {

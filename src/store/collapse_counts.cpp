@@ -16,11 +16,7 @@ namespace {
 
 // The values of collapse_identity_columns() for a collapse count, in that order, from index c on.
 void bind_collapse_definition(SqlStatement& q, int& c, const CollapseSpec& s) {
-  for (const TypedValue& v : stored_collapse_values(s)) {
-    if (const auto* t = std::get_if<std::string>(&v)) q.bind(c++, *t);
-    else if (const auto* i = std::get_if<long long>(&v)) q.bind(c++, static_cast<std::int64_t>(*i));
-    else q.bind(c++, std::get<double>(v));  // k = +inf for hard spheres (SQLite keeps it as Inf)
-  }
+  for (const TypedValue& v : stored_collapse_values(s)) q.bind(c++, v);  // k = +inf for hard spheres (SQLite keeps it as Inf)
 }
 
 // The id of the first stored count with this definition, if any.

@@ -371,11 +371,8 @@ std::int64_t ResultsStore::append_run(const RunResult& r) {
     const auto& stored = stored_run_parameters();
     const auto values = stored_values(r.spec);
     for (std::size_t i = 0; i < stored.size(); ++i) {
-      const TypedValue& v = values[i].value;
       if (stored[i].nullable && !values[i].acts) run.bind_null(c++);  // tc of a soft engine
-      else if (const auto* t = std::get_if<std::string>(&v)) run.bind(c++, *t);
-      else if (const auto* n = std::get_if<long long>(&v)) run.bind(c++, static_cast<std::int64_t>(*n));
-      else run.bind(c++, std::get<double>(v));
+      else run.bind(c++, values[i].value);
     }
     for (const ResultColumn& column : run_result_columns()) column.bind(run, c++, r);
     run.run();

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <limits>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "store/results_store.hpp"
 
@@ -24,6 +26,13 @@ class SqlStatement {
   void bind(int i, double x) { sqlite3_bind_double(stmt_, i, x); }
   void bind(int i, std::int64_t x) { sqlite3_bind_int64(stmt_, i, x); }
   void bind(int i, const std::string& s) { sqlite3_bind_text(stmt_, i, s.c_str(), -1, SQLITE_TRANSIENT); }
+  // A typed value of a parameter (config/parameter.hpp's TypedValue): text, integer or real.
+  void bind(int i, const std::variant<std::string, long long, double>& v) {
+    std::visit([&](const auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, long long>) bind(i, static_cast<std::int64_t>(x));
+      else bind(i, x);
+    }, v);
+  }
   void run() {
     if (sqlite3_step(stmt_) != SQLITE_DONE) throw StoreError(fmt::format("results store: {}", sqlite3_errmsg(db_)));
     sqlite3_reset(stmt_);

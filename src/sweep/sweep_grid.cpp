@@ -89,7 +89,7 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   const std::vector<std::string>& names = sweep_grid_parameters();
   std::vector<const Parameter*> axes;
   std::vector<std::vector<AxisValue>> values;
-  std::size_t engine_axis = names.size();
+  std::size_t engine_axis = names.size();  // the table has an engine axis (.at below would say if not)
   for (const std::string& name : names) {
     axes.push_back(find_parameter(run_parameters(), name));
     values.push_back(grid_values(def, name));
@@ -100,12 +100,8 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
     const EngineInfo* e = name.given ? find_engine(name.value.text()) : &granchain::engines().front();
     return e != nullptr && e->hard_spheres;
   };
-  const auto hard_at = [&](const std::vector<std::size_t>& at) {
-    return engine_axis < names.size() ? is_hard(values[engine_axis][at[engine_axis]]) : is_hard(AxisValue{});
-  };
-  bool any_hard = false;
-  for (std::size_t i = 0; engine_axis < names.size() && i < values[engine_axis].size(); ++i) any_hard |= is_hard(values[engine_axis][i]);
-  if (engine_axis == names.size()) any_hard = is_hard(AxisValue{});
+  const auto hard_at = [&](const std::vector<std::size_t>& at) { return is_hard(values.at(engine_axis)[at[engine_axis]]); };
+  const bool any_hard = std::any_of(values.at(engine_axis).begin(), values.at(engine_axis).end(), is_hard);
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
 
   std::vector<SweepPoint> points;
