@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -23,6 +25,7 @@ struct CollapseRequest {
   CollapseSpec spec;
   std::string db;  // "" : not stored
   bool record = false;
+  std::optional<py::object> progress;  // callable(dict), called about every 0.5 s
 };
 
 // One e and one k, read and checked by the command's own resolve_collapse_options.
@@ -31,6 +34,9 @@ CollapseRequest collapse_request_checked(const py::kwargs& kwargs) {
   CollapseRequest q;
   const std::optional<py::object> db = take(args, "db");
   const std::optional<py::object> record = take(args, "record-collisions");
+  q.progress = take(args, "progress");
+  if (q.progress && !PyCallable_Check(q.progress->ptr()))
+    throw InputError("progress: expected a callable taking one dict (or None)");
   std::map<std::string, RawValue> raw;
   for (const auto& [name, value] : args) raw[name] = keyword_value(value, find_parameter(collapse_parameters(), name));
   // The command's default k is a list; a call counts one k, which a soft engine needs given.
@@ -66,7 +72,7 @@ CollapseRequest collapse_request(const py::kwargs& kwargs) {
   try {
     return collapse_request_checked(kwargs);
   } catch (const InputError& e) {
-    throw InputError(keyword_message(e.what(), collapse_parameters(), {"record-collisions"}));
+    throw InputError(keyword_message(e.what(), collapse_parameters(), {"record-collisions", "progress"}));
   }
 }
 
@@ -150,22 +156,51 @@ py::dict collapse_dict(const CollapseResult& r, const std::vector<CollisionRecor
   return d;
 }
 
+// The count runs on a thread of its own while this one watches for Ctrl-C (run_interruptible): an
+// interrupted count returns the launches finished before the first unfinished one (complete
+// False; not stored), marked interrupted: the package raises granchain.Interrupted holding it.
 py::dict collapse(const py::kwargs& kwargs) {
   const CollapseRequest q = collapse_request(kwargs);
   CollapseResult result;
   std::vector<CollisionRecord> recs;
   std::int64_t id = 0;
-  {
-    py::gil_scoped_release nogil;
+  std::atomic<bool> cancel{false};
+  std::atomic<int> launches_done{0};
+  std::atomic<std::uint64_t> collisions{0};
+  const auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  const auto tick = [&] {
+    if (!q.progress) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last).count() < 0.5) return;
+    last = now;
+    py::dict d;
+    d["done"] = launches_done.load();
+    d["total"] = q.spec.realizations;
+    d["collisions"] = collisions.load();
+    d["elapsed"] = std::chrono::duration<double>(now - start).count();
+    (*q.progress)(d);
+  };
+  const auto work = [&] {
     CollisionLog log;
     if (q.record) log = [&recs](const std::vector<CollisionRecord>& r) { recs.insert(recs.end(), r.begin(), r.end()); };
-    result = run_collapse(q.spec, log);
-    if (!q.db.empty()) {
+    const LaunchProgress on_launch = [&](int done, std::uint64_t c) {
+      launches_done = done;
+      collisions += c;
+    };
+    result = run_collapse(q.spec, log, on_launch, {}, &cancel);
+    if (!q.db.empty() && !result.interrupted) {
       ResultsStore store(q.db);
       id = store.insert_collapse(result);
     }
-  }
-  return collapse_dict(result, recs, q.record, q.db, id);
+  };
+  std::optional<py::error_already_set> stop = run_interruptible(cancel, work, tick);
+  if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);  // the progress callback's own error
+  // Ctrl-C: interrupted, whether or not the count had finished (then it is whole, and stored).
+  py::dict d = collapse_dict(result, recs, q.record, q.db, id);
+  d["interrupted"] = stop.has_value();
+  d["complete"] = !result.interrupted;
+  return d;
 }
 
 // A CollapseResult rebuilt from a dict of collapse(): what k_slope reads.

@@ -2,6 +2,7 @@
 // the CLI's own resolve_run_options, the result as a dict with numpy profiles.
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
+#include <pybind11/stl.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "config/run_options.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
+#include "simulation/run_verdicts.hpp"
 #include "version.hpp"
 
 namespace granchain::python {
@@ -57,9 +59,11 @@ py::array_t<double> per_particle(const std::vector<ParticleProfile>& profiles, G
   return a;
 }
 
+}  // namespace
+
 // The result: every scalar of `granchain run --json` (non-finite values kept as inf and nan), the
 // profiles as numpy arrays, and the CLI's JSON text itself.
-py::dict result_dict(const RunResult& r, const std::string& json_text, const std::string& db, std::int64_t run_id) {
+py::dict run_result_dict(const RunResult& r, const std::string& json_text, const std::string& db, std::int64_t run_id) {
   py::dict d;
   d["parameters"] = spec_dict(r.spec);
   d["n_coll"] = r.n_coll.value;
@@ -77,6 +81,7 @@ py::dict result_dict(const RunResult& r, const std::string& json_text, const std
   st["n_coll"] = estimate_halves(r.n_coll_halves);
   st["mean_height"] = estimate_halves(r.height_halves);
   d["stationarity"] = st;
+  d["warnings"] = run_warnings(r);  // the verdicts; the package raises each as granchain.QualityWarning
   py::array_t<std::int64_t> index(static_cast<py::ssize_t>(r.profiles.size()));
   for (py::ssize_t i = 0; i < index.shape(0); ++i) index.mutable_at(i) = i + 1;
   d["i"] = index;
@@ -117,6 +122,8 @@ py::dict result_dict(const RunResult& r, const std::string& json_text, const std
   d["json"] = json_text;
   return d;
 }
+
+namespace {
 
 // Called about every half second of wall time from inside the run (without the GIL): takes the
 // GIL, lets Ctrl-C (KeyboardInterrupt) and an exception from the user's callback end the run.
@@ -181,7 +188,7 @@ py::dict run_keywords(const py::kwargs& kwargs) {
                        .c_str(),
                    1) != 0)
         throw py::error_already_set();  // warnings turned into errors
-      py::dict d = result_dict(stored->result, stored->json.dump(2), opts.db_path, stored->id);
+      py::dict d = run_result_dict(stored->result, stored->json.dump(2), opts.db_path, stored->id);
       d["reused"] = true;
       return d;
     }
@@ -208,7 +215,7 @@ py::dict run_keywords(const py::kwargs& kwargs) {
     }
     json_text = j.dump(2);
   }
-  py::dict d = result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
+  py::dict d = run_result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
   d["reused"] = reused;
   return d;
 }

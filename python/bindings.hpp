@@ -3,6 +3,9 @@
 // reads its flags, and the functions that add each group of bindings to the module.
 #include <pybind11/pybind11.h>
 
+#include <atomic>
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,11 +44,28 @@ std::optional<py::object> take(std::map<std::string, py::object>& args, const st
 // A path argument (str or os.PathLike) as text; ValueError naming `option` otherwise.
 std::string path_text(const py::handle& value, const std::string& option);
 
+// Runs `work` on a thread of its own without the GIL while the calling thread wakes every
+// `tick_every` seconds (and once at the end) to look for Ctrl-C and call `tick` (progress). A
+// KeyboardInterrupt (or an exception from tick) sets `cancel`, which the work reads between its
+// events (simulation/cancellation.hpp), and is returned once the work has ended: the caller
+// returns what finished and marks it interrupted (a KeyboardInterrupt; the package raises
+// granchain.Interrupted) or rethrows it. An exception from the work itself is rethrown.
+std::optional<py::error_already_set> run_interruptible(std::atomic<bool>& cancel, const std::function<void()>& work,
+                                                       const std::function<void()>& tick = {}, double tick_every = 0.1);
+
+// A driven-column result as the dict run() returns (bind_run.cpp); db "" when not stored.
+}  // namespace granchain::python
+namespace granchain { struct RunResult; }
+namespace granchain::python {
+py::dict run_result_dict(const RunResult& r, const std::string& json_text, const std::string& db, std::int64_t run_id);
+
 // The groups of functions; module.cpp calls each.
 void bind_run(py::module_& m);
 void bind_collapse(py::module_& m);
 void bind_theory(py::module_& m);
 void bind_store(py::module_& m);
 void bind_analysis(py::module_& m);
+void bind_sweep(py::module_& m);
+void bind_trace(py::module_& m);
 
 }  // namespace granchain::python

@@ -40,4 +40,6 @@ PYBIND11_MODULE(_granchain, m) {
   granchain::python::bind_theory(m);
   granchain::python::bind_store(m);
   granchain::python::bind_analysis(m);
+  granchain::python::bind_sweep(m);
+  granchain::python::bind_trace(m);
 }

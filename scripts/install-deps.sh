@@ -10,6 +10,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   python3-numpy python3-scipy python3-matplotlib help2man
   pybind11-dev python3-dev python3-pytest
+  python3-pandas python3-venv python3-pip python3-setuptools python3-wheel
 )
 
 missing=()

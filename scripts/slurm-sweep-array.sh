@@ -5,16 +5,16 @@
 #   bash scripts/slurm-sweep-array.sh --array=7     resubmit shard 7 (one that exited 75, having left
 #                                                   points its walltime could not hold, or one killed
 #                                                   by a node failure): it resumes where it stopped
-#   ./build/granchain merge --into fig4.db shards/fig4-*.db     join the shards when all have finished
+#   ./build/granchain merge --into fig5.db shards/fig5-*.db     join the shards when all have finished
 #
 # Run from the repository root. Outside a job the script submits itself with sbatch (extra
 # arguments go to sbatch); inside the job it runs its shard. The number of shards is fixed here,
 # not read from the array, so that a resubmitted single task still runs share i of SHARDS.
-#SBATCH --job-name=granchain-fig4
+#SBATCH --job-name=granchain-fig5
 #SBATCH --array=1-16
 #SBATCH --cpus-per-task=8
 #SBATCH --time=24:00:00
-#SBATCH --output=shards/fig4-%a.log
+#SBATCH --output=shards/fig5-%a.log
 set -euo pipefail
 SHARDS=16
 GRANCHAIN=${GRANCHAIN:-./build/granchain}
@@ -34,4 +34,4 @@ mkdir -p shards
 # limit, half an hour inside the job's --time, starts only points predicted to end before the job is
 # killed; a shard with points left exits 75 and is resubmitted with --array=i.
 "$GRANCHAIN" sweep --N 25 --e 0.80:0.998:0.002 --k 1e5:1e10:x10 --T 1e4 --seed 1 \
-    --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig4-$i.db" --time-limit 23.5h --progress -q
+    --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/fig5-$i.db" --time-limit 23.5h --progress -q

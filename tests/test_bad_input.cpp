@@ -166,7 +166,7 @@ const std::vector<BadInputRow> kRows = {
     {"run --N 100000 --T 1", 2, {"--N = 100000 is out of range", "N <= 43690 at bins = 1024", "1 GiB"}, kAll},
     {"run --engine hard --N 3 --T 1 --transient 1e16", 2, {"--transient = 1e16 is out of range", "transient + T <= 1e15"}, kAll},
     {"trace --N 3 --from 1e10 --to 1.0000001e10 --dt 1e-9", 2, {"--dt = 1e-09 is out of range", "clock's resolution"}, kAll},
-    {"trace --N 3 --setup free --v0 inf --to 1", 2, {"--a, --v0, --dv0"}, kAll},
+    {"trace --N 3 --setup free --v0 inf --to 1", 2, {"--v0 = 'inf' is not finite; valid range: v0 > 0"}, kAll},
     {"sweep --progress-every 1e300 --T 1 --dry-run", 2, {"--progress-every", "0.1 <= seconds <= 86400"}, kAll},
     {"collapse --realizations 1 --no-db", 2, {"--realizations = '1'", "2 <= realizations"}, kAll},
     {"analyze --db store.db --k-min inf", 2, {"--k-min = inf is out of range", "finite"}, kAll},

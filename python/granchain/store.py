@@ -88,8 +88,43 @@ def analyze(db, *, N=None, T0=None, engine=None, k_min=0.0):
     return json.loads(_granchain._analyze_text(db, values, _names(engine), float(k_min)))
 
 
+# Store's rows as a notebook reads them (export() keeps the CLI's columns): the names the results of
+# run() use (SQL column names ignore case, so the store calls K "K_mean" beside k and D
+# "damping_D" beside d), verdicts as booleans, creation times as datetime64, rows sorted by the
+# parameters (as the sweep's table lists them) rather than by when they were stored.
+_RENAMED = {"K_mean": "K", "damping_D": "D"}
+_BOOLEAN = {"runs": ("n_coll_converged", "stationary"), "realizations": ("collapsed",)}
+_ORDER = {
+    "runs": ("engine", "N", "T0", "k", "T", "e", "seed", "id"),
+    "profiles": ("engine", "N", "T0", "k", "T", "e", "seed", "run_id", "i"),
+    "collapse": ("setup", "engine", "N", "e", "k", "seed", "id"),
+    "realizations": ("setup", "engine", "N", "e", "k", "seed", "run_id", "realization"),
+}
+
+
+def _notebook_rows(rows, table):
+    names = [_RENAMED.get(n, n) for n in rows.dtype.names]
+    columns = {}
+    for old, new in zip(rows.dtype.names, names):
+        a = rows[old]
+        if old in _BOOLEAN.get(table, ()) and a.dtype.kind in "iu":
+            a = a.astype(bool)  # (a column with NULLs, read as float with nan, stays as it is)
+        elif old == "created_utc" and a.dtype.kind == "U":
+            a = np.array([t.rstrip("Z") for t in a], dtype="datetime64[s]")
+        columns[new] = a
+    out = np.empty(len(rows), dtype=[(n, a.dtype) for n, a in columns.items()])
+    for n, a in columns.items():
+        out[n] = a
+    keys = [out[k] for k in reversed(_ORDER[table]) if k in columns]
+    return out[np.lexsort(keys)] if keys and len(out) else out
+
+
 class Store:
-    """A results store opened for reading: Store('granchain.db').runs(N=25, e=0.9)."""
+    """A results store opened for reading: Store('granchain.db').runs(N=25, e=0.9).
+
+    Its tables come back as numpy structured arrays sorted by the parameters, with the names of
+    run()'s results (K, D), booleans and datetime64 creation times; export() gives the rows as
+    ``granchain export`` does."""
 
     def __init__(self, path):
         self.path = _granchain._check_store(path)  # ValueError if it is not a readable store
@@ -99,20 +134,20 @@ class Store:
         return analyze(self.path, **filters)
 
     def runs(self, **filters):
-        """Driven-column runs: parameters, n_coll, rates with errors, cost, point key, replica."""
-        return export(self.path, "runs", **filters)
+        """Driven-column runs: parameters, n_coll, rates with errors, verdicts, cost, point key, replica."""
+        return _notebook_rows(export(self.path, "runs", **filters), "runs")
 
     def profiles(self, **filters):
-        """Per-particle profiles (z_mean, z_std, K_mean with errors) beside each run's parameters."""
-        return export(self.path, "profiles", **filters)
+        """Per-particle profiles (z_mean, z_std, K with errors) beside each run's parameters."""
+        return _notebook_rows(export(self.path, "profiles", **filters), "profiles")
 
     def collapse(self, **filters):
         """Collapse counts: one row per (e, k) point with n_tot and its error."""
-        return export(self.path, "collapse", **filters)
+        return _notebook_rows(export(self.path, "collapse", **filters), "collapse")
 
     def realizations(self, **filters):
         """Per-launch counts of every collapse count."""
-        return export(self.path, "realizations", **filters)
+        return _notebook_rows(export(self.path, "realizations", **filters), "realizations")
 
     def __repr__(self):
         return f"granchain.Store({self.path!r})"

@@ -10,6 +10,7 @@
 #include "store/output_file.hpp"
 #include "reproduce/store_analysis.hpp"
 #include "cli/subcommand.hpp"
+#include "cli/exit_codes.hpp"
 #include "config/value_list.hpp"
 #include "store/results_store.hpp"
 
@@ -37,7 +38,8 @@ Subcommand add_analyze_command(CLI::App& app) {
       "c k^alpha and classifies it (uncollapsing: b not > 2 errors; power-law: b > 0 and convex against\n"
       "log10 k; logarithmic: otherwise). Per (engine, N, T0): e_c1 (root of sqrt(b) against e), e_c2 (the\n"
       "convex/concave bracket), alpha bar (mean alpha at e = 0.1..0.4). Across N: (1 - e_c) = A/N and\n"
-      "alpha bar = p log10 N + q. Criteria and errors: docs/analysis.md.");
+      "alpha bar = p log10 N + q. Criteria and errors: docs/analysis.md.\n" +
+      exit_codes_help("2 bad input or no usable store (nothing written), 4 an output could not be written"));
   sub_->add_option("--db", impl_->db, "results store to read; default granchain.db")->type_name("FILE");
   sub_->add_option("--N", impl_->N, "only these N (list or range)")->type_name("LIST");
   sub_->add_option("--T0", impl_->T0, "only these floor temperatures (list or range)")->type_name("LIST");

@@ -75,8 +75,8 @@ Subcommand add_collapse_command(CLI::App& app) {
       "For each e with several k, the slope of n_tot against log10 k between successive k is computed\n"
       "from the per-launch differences (the same launches at every k), and alpha = d ln n_tot / d ln k\n"
       "from the two means (for n_tot ~ k^alpha); for N = 3 below e_c(3) the slope is\n"
-      "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n"
-      "Exit codes: 0 ok, 2 bad input (nothing written), 3 unphysical (nothing written), 4 store failed.");
+      "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n" +
+      exit_codes_help("2 bad input (nothing written), 3 unphysical (nothing written), 4 store failed"));
   return {sub_, [impl_] { return execute_collapse(impl_); }};
 }
 

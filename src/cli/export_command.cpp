@@ -1,4 +1,5 @@
 #include "cli/subcommand.hpp"
+#include "cli/exit_codes.hpp"
 
 #include <fmt/format.h>
 
@@ -35,7 +36,8 @@ Subcommand add_export_command(CLI::App& app) {
       "beside the run's parameters), collapse (one row per collapse count), realizations (one row per\n"
       "launch of a collapse count). Filters combine with AND; values match within 1e-12 relative.\n"
       "Examples:  granchain export --N 25 --e 0.8:0.9:0.002 --output n25.csv\n"
-      "           granchain export --table profiles --where \"e > 0.85 AND k >= 1e8\" --format json");
+      "           granchain export --table profiles --where \"e > 0.85 AND k >= 1e8\" --format json\n" +
+      exit_codes_help("2 bad input (nothing written), 4 the output could not be written"));
   auto& o = *impl_;
   sub_->add_option("--db", o.db, "results store to read; default granchain.db")->type_name("FILE");
   sub_->add_option("--table", o.table, "runs (default), profiles, collapse or realizations");

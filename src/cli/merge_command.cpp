@@ -1,4 +1,5 @@
 #include "cli/subcommand.hpp"
+#include "cli/exit_codes.hpp"
 
 #include <fmt/format.h>
 
@@ -28,7 +29,8 @@ Subcommand add_merge_command(CLI::App& app) {
       "sources is copied into --into, which is created if missing. A point held by both with identical\n"
       "results is kept once, so merging again is harmless; with different results the merge stops, names\n"
       "both runs and the first differing number, and writes nothing (exit 2). Sources are only read.\n"
-      "Example (job array): granchain merge --into all.db shard-*.db");
+      "Example (job array): granchain merge --into all.db shard-*.db\n" +
+      exit_codes_help("2 bad input or conflicting results (nothing merged), 4 the target could not be written"));
   sub_->add_option("--into", impl_->into, "the store to merge into (created if missing)")->required()->type_name("FILE");
   sub_->add_option("sources", impl_->sources, "stores to merge from")->required()->type_name("FILE...");
   sub_->add_flag("--quiet,-q", impl_->quiet, "print nothing on success");

@@ -51,8 +51,9 @@ Subcommand add_run_command(CLI::App& app) {
       "n_coll = N_coll / (N T) counts every separation of two touching particles and every floor hit\n"
       "inside the measuring window; errors are one standard error from blocking analysis.\n"
       "Output: a summary on the terminal, JSON with --json [FILE] (stdout without FILE), and one row\n"
-      "in the results store (--db). Exit codes: 0 ok, 2 bad input (nothing written), 3 the\n"
-      "simulation turned unphysical (nothing written), 4 the results store could not be written.");
+      "in the results store (--db).\n" +
+      exit_codes_help("2 bad input (nothing written), 3 the simulation turned unphysical (nothing written), 4 the results "
+                      "store could not be written"));
   auto& impl = *impl_;
   for (const Parameter& p : run_parameters()) {
     if (!(p.uses & kUseRun)) continue;

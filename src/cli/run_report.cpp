@@ -5,18 +5,31 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simulation/run_verdicts.hpp"
+
 namespace granchain {
 
-std::string format_with_error(double value, double error) {
-  if (!std::isfinite(error) || error <= 0) return fmt::format("{:.6g}", value);
-  const int exponent = static_cast<int>(std::floor(std::log10(error)));
-  const int decimals = std::max(0, 1 - exponent);
-  if (decimals > 12 || std::abs(value) >= 1e7 || (value != 0 && std::abs(value) < 1e-4))
-    return fmt::format("{:.6g} ± {:.2g}", value, error);
-  return fmt::format("{:.{}f} ± {:.{}f}", value, decimals, error, decimals);
+namespace {
+
+// A sentence as warning lines of at most about 100 columns: "  warning: ..." then indented.
+std::string warning_lines(const std::string& sentence) {
+  std::string out = "  warning:", line;
+  std::size_t start = 0;
+  while (start < sentence.size()) {
+    std::size_t end = sentence.find(' ', start);
+    if (end == std::string::npos) end = sentence.size();
+    const std::string word = sentence.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > 88) {
+      out += " " + line + "\n          ";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
+  }
+  return out + " " + line + "\n";
 }
 
-std::string format_estimate(const Estimate& e) { return format_with_error(e.value, e.error); }
+}  // namespace
 
 std::string run_summary(const RunResult& r, const std::string& stored) {
   const RunSpec& s = r.spec;
@@ -34,25 +47,7 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   out += fmt::format("  pair rate   = {}   particle-particle collisions per unit time\n", format_estimate(r.pp_rate));
   out += fmt::format("  in window: {} particle-particle collisions, {} floor hits; {} profile samples every {:.4g}\n",
                      r.particle_collisions, r.floor_hits, r.samples, r.sample_interval);
-  if (!r.n_coll.converged)
-    out += "  warning: the blocking analysis of n_coll found no plateau; T may be short compared with the\n"
-           "           correlation time, so its error bar may be too small\n";
-  if (!r.stationary()) {
-    auto line = [](const char* what, const StationarityCheck& c) {
-      return fmt::format("           {}: first half {}, second half {} (z = {:.1f})\n", what,
-                         format_estimate(c.first), format_estimate(c.second), c.z);
-    };
-    out += "  warning: the measuring window is not stationary (the halves differ by more than 3 standard\n"
-           "           errors): the column had not settled, or drifts; the errors are not to be trusted\n";
-    if (!r.n_coll_halves.stationary) out += line("n_coll", r.n_coll_halves);
-    if (!r.height_halves.stationary) out += line("mean height", r.height_halves);
-  }
-  int unconverged = 0;
-  for (const ParticleProfile& q : r.profiles)
-    unconverged += !q.z_mean.converged + !q.z_std.converged + !q.kinetic.converged;
-  if (unconverged > 0)
-    out += fmt::format("  warning: {} of {} profile error bars found no blocking plateau (lower bounds; run longer)\n",
-                       unconverged, 3 * r.profiles.size());
+  for (const std::string& w : run_warnings(r)) out += warning_lines(w);
   out += "\n     i  <z_i>                 sigma_i               K_i\n";
   for (std::size_t i = 0; i < r.profiles.size(); ++i) {
     const ParticleProfile& q = r.profiles[i];

@@ -1,4 +1,5 @@
 #include "cli/subcommand.hpp"
+#include "cli/exit_codes.hpp"
 #include "sweep/sweep_progress.hpp"
 
 #include <fmt/format.h>
@@ -93,8 +94,9 @@ Subcommand add_sweep_command(CLI::App& app) {
       "MPI: mpirun -np P granchain sweep ... : rank 0 writes the store and hands out points one at a time;\n"
       "every other rank runs one point at a time (give one rank per core). --threads sets rank 0's own\n"
       "workers (default 1 under MPI). Job arrays: --shard i/n runs share i of n; join the stores with\n"
-      "`granchain merge`. Exit codes: 0 ok, 2 bad input (nothing run), 3 some points turned unphysical\n"
-      "(the others are stored), 4 the results store could not be written.");
+      "`granchain merge`.\n" +
+      exit_codes_help("2 bad input (nothing run), 3 some points turned unphysical (the others are stored), 4 the results "
+                      "store could not be written, 75 --time-limit left points for a repeat of the command"));
   auto& impl = *impl_;
   for (const Parameter& p : run_parameters()) {
     if (!(p.uses & kUseSweep)) continue;
@@ -307,14 +309,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       fmt::print("{:>6} {:>8} {:>10} {:>6} {:>8} {:>10} {:>4} {:>10} {:>9} {:>6}\n", "N", "e", "k", "T0", "T", "engine", "rep",
                  "n_coll", "error", "run");
       std::vector<const SweepPoint*> order;
-      for (const auto& p : points) order.push_back(&p);
-      std::sort(order.begin(), order.end(), [](const SweepPoint* a, const SweepPoint* b) {
-        const auto& x = a->spec;
-        const auto& y = b->spec;
-        const std::string_view xe = engine_name(x.engine.kind), ye = engine_name(y.engine.kind);  // by name, as printed
-        return std::tie(xe, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, a->replica) <
-               std::tie(ye, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, b->replica);
-      });
+      for (std::size_t i : table_order(points)) order.push_back(&points[i]);
       for (const SweepPoint* p : order) {
         const auto it = summaries.find(p->key);
         if (it == summaries.end()) continue;  // failed

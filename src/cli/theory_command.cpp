@@ -49,8 +49,8 @@ Subcommand add_theory_command(CLI::App& app) {
       "Eq. (ec_cushion); the free-space estimate e_c(N) = tan^2(pi/4 (1 - 2/N)) of Sec. III.B (N >= 3).\n"
       "Per e: the cushion model's N_c^wall(e); for e <= e_c(3) = 7 - 4 sqrt 3 the three-body fixed points\n"
       "m*, m'* (Appendix A), q, Eq. (def_q), f (Appendix B), and the slope of n_tot against ln k and\n"
-      "log10 k, Eq. (ntot-log): -1/(2 ln q). The values are not stored in the results store.\n"
-      "Exit codes: 0 ok, 2 bad input (nothing written).");
+      "log10 k, Eq. (ntot-log): -1/(2 ln q). The values are not stored in the results store.\n" +
+      exit_codes_help("2 bad input (nothing written)"));
   return {sub_, [impl_] { return execute_theory(impl_); }};
 }
 

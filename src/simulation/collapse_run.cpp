@@ -16,6 +16,7 @@
 #include "analysis/blocking.hpp"
 #include "model/floor.hpp"
 #include "model/random.hpp"
+#include "simulation/cancellation.hpp"
 
 namespace granchain {
 
@@ -28,11 +29,15 @@ namespace {
 // the driver can test the stop rule in free flight.
 class CollapseObserver final : public EventSink {
  public:
-  CollapseObserver(int N, int realization, bool keep_records, double wall_restitution)
+  CollapseObserver(int N, int realization, bool keep_records, double wall_restitution, const CancelFlag* cancel)
       : begin_t_(N, 0.0), begin_speed_(N, 0.0), realization_(realization), keep_(keep_records),
-        wall_r_(wall_restitution) {}
+        wall_r_(wall_restitution), cancel_(cancel) {}
 
   void on_event(const Event& ev) override {
+    if (cancel_requested(cancel_)) {
+      cancelled_ = true;
+      request_stop();
+    }
     switch (ev.kind) {
       case EventKind::ContactBegin:
         ++open_;
@@ -55,6 +60,7 @@ class CollapseObserver final : public EventSink {
     }
   }
   int open_contacts() const { return open_; }
+  bool cancelled() const { return cancelled_; }
 
   RealizationOutcome outcome;
   std::vector<CollisionRecord> records;
@@ -65,6 +71,8 @@ class CollapseObserver final : public EventSink {
   int realization_;
   bool keep_;
   double wall_r_;
+  const CancelFlag* cancel_;
+  bool cancelled_ = false;
 };
 
 bool stop_rule_holds(const CollapseSpec& spec, const ChainState& s) {
@@ -100,14 +108,14 @@ struct RealizationRun {
   std::vector<ClosedState> states;
 };
 
-RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_records, bool keep_states) {
+RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_records, bool keep_states, const CancelFlag* cancel) {
   ChainParameters p = spec.params;
   p.g = 0.0;
   const ChainState initial = collapse_initial_state(spec, r);
   Wall wall(p.e);  // Bernu and Mazighi's wall: the restitution of the spheres (its mirror image)
   FloorDrive* floor = spec.setup == CollapseSetup::Wall ? &wall : nullptr;
   auto engine = make_engine(spec.engine, p, initial, floor);
-  CollapseObserver obs(p.N, r, keep_records, p.e);
+  CollapseObserver obs(p.N, r, keep_records, p.e, cancel);
   bool done = !any_overlap(initial, p.d) && stop_rule_holds(spec, initial);
   const bool hard = engine_info(spec.engine.kind).hard_spheres;
   std::vector<ClosedState> states;
@@ -115,6 +123,7 @@ RealizationRun run_realization(const CollapseSpec& spec, int r, bool keep_record
     while (!done) {
       obs.clear_stop();
       engine->advance_to(spec.t_max, obs);
+      if (obs.cancelled()) throw RunCancelled{};
       // Nothing happened up to t_max in free flight: any collision still to come is later than
       // t_max, between pairs approaching by less than ~(gap / t_max); the launch has ended.
       if (!obs.stop_requested() && obs.open_contacts() == 0) break;
@@ -149,7 +158,7 @@ ChainState collapse_initial_state(const CollapseSpec& spec, int r) {
 }
 
 CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, const LaunchProgress& progress,
-                            const ClosedStateLog& states_log) {
+                            const ClosedStateLog& states_log, const CancelFlag* cancel) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int R = spec.realizations;
   CollapseResult res;
@@ -176,17 +185,20 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
       int r;
       {
         std::unique_lock lock(mu);
-        cv.wait(lock, [&] { return failure || next >= R || !log || next < flushed + window; });
-        if (failure || next >= R) return;
+        cv.wait(lock, [&] { return failure || cancel_requested(cancel) || next >= R || !log || next < flushed + window; });
+        if (failure || cancel_requested(cancel) || next >= R) return;
         r = next++;
       }
       try {
-        RealizationRun run = run_realization(spec, r, static_cast<bool>(log), keep_states);
+        RealizationRun run = run_realization(spec, r, static_cast<bool>(log), keep_states, cancel);
         std::lock_guard lock(mu);
         res.outcomes[r] = run.outcome;
         pending[r] = std::move(run.records);
         pending_states[r] = std::move(run.states);
         finished[r] = 1;
+      } catch (const RunCancelled&) {
+        cv.notify_all();
+        return;
       } catch (...) {
         std::lock_guard lock(mu);
         if (!failure) failure = std::current_exception();
@@ -199,8 +211,18 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
   {
     std::unique_lock lock(mu);
     while (flushed < R) {
-      cv.wait(lock, [&] { return failure || finished[flushed]; });
+      // A cancelled count keeps the launches 0 .. flushed-1, whose records are handed over already.
+      const auto ready = [&] { return failure || finished[flushed] || cancel_requested(cancel); };
+      if (cancel) {
+        while (!cv.wait_for(lock, std::chrono::milliseconds(50), ready)) {}
+      } else {
+        cv.wait(lock, ready);
+      }
       if (failure) break;
+      if (!finished[flushed]) {
+        res.interrupted = true;
+        break;
+      }
       std::vector<CollisionRecord> records = std::move(pending[flushed]);
       std::vector<ClosedState> states = std::move(pending_states[flushed]);
       const std::uint64_t collisions = res.outcomes[flushed].particle_collisions;
@@ -218,6 +240,10 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
   cv.notify_all();
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+  if (res.interrupted) {
+    res.outcomes.resize(static_cast<std::size_t>(flushed));
+    res.spec.realizations = flushed;
+  }
 
   // Statistics over the realisations that did not collapse, in realisation order.
   std::vector<double> counts;

@@ -24,6 +24,7 @@
 #include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/collapse_setups.hpp"
+#include "simulation/cancellation.hpp"
 
 namespace granchain {
 
@@ -82,6 +83,9 @@ struct CollapseResult {
   // engine's resolution (see RealizationOutcome).
   std::uint64_t collisions = 0, grazing_contacts = 0, held_contacts = 0;
   int one_body = 0;  // launches that ended as one body (RealizationOutcome::one_body)
+  // Cancelled (run_collapse's cancel flag): only launches 0 .. n-1 finished; spec.realizations is n
+  // and everything above is over them, the same numbers as a count of n launches.
+  bool interrupted = false;
 };
 
 // Called with each realisation's collisions in order, realisations in order, from the calling
@@ -101,8 +105,10 @@ struct ClosedState {
 // With a ClosedStateLog (and a CollisionLog), each realisation's closed states are handed over
 // after its records, in the same order; keeping them costs one state per collision.
 using ClosedStateLog = std::function<void(const std::vector<ClosedState>&)>;
+// cancel (simulation/cancellation.hpp): when set, the launches under way are abandoned and the
+// result holds those finished before the first unfinished one (CollapseResult::interrupted).
 CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {}, const LaunchProgress& progress = {},
-                            const ClosedStateLog& states = {});
+                            const ClosedStateLog& states = {}, const CancelFlag* cancel = nullptr);
 
 // How n_tot changes between two counts of the same launches at k1 < k2 (same spec otherwise).
 struct KSlope {

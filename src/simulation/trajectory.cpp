@@ -18,19 +18,21 @@ namespace {
 
 class WindowEvents final : public EventSink {
  public:
-  explicit WindowEvents(double from) : from_(from) {}
+  WindowEvents(double from, const CancelFlag* cancel) : from_(from), cancel_(cancel) {}
   void on_event(const Event& e) override {
     if (e.t >= from_) events.push_back(e);
+    if (cancel_requested(cancel_)) request_stop();
   }
   std::vector<Event> events;
 
  private:
   double from_;
+  const CancelFlag* cancel_;
 };
 
 }  // namespace
 
-Trajectory record_trajectory(const TraceSpec& spec) {
+Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel) {
   ChainParameters p = spec.run.params;
   std::unique_ptr<ThermalFloor> floor;
   ChainState initial;
@@ -47,12 +49,18 @@ Trajectory record_trajectory(const TraceSpec& spec) {
     initial = driven_column_initial_state(p, spec.run.seed);
   }
   auto engine = make_engine(spec.run.engine, p, initial, floor.get());
-  WindowEvents sink(spec.t_from);
+  WindowEvents sink(spec.t_from, cancel);
   Trajectory tr;
   const auto samples = static_cast<std::int64_t>(std::floor((spec.t_to - spec.t_from) / spec.dt + 1e-9));
   for (std::int64_t s = 0; s <= samples; ++s) {
     const double t = spec.t_from + static_cast<double>(s) * spec.dt;
     engine->advance_to(t, sink);
+    if (cancel_requested(cancel)) {  // the samples so far are whole; the events up to the last of them kept
+      tr.interrupted = true;
+      const double last = tr.t.empty() ? -1.0 : tr.t.back();
+      std::erase_if(sink.events, [last](const Event& e) { return e.t > last; });
+      break;
+    }
     tr.t.push_back(t);
     tr.z.push_back(engine->state().z);
   }

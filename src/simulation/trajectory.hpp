@@ -7,6 +7,7 @@
 
 #include "engines/events.hpp"
 #include "model/collapse_setups.hpp"
+#include "simulation/cancellation.hpp"
 #include "simulation/driven_run.hpp"
 
 namespace granchain {
@@ -23,10 +24,12 @@ struct Trajectory {
   std::vector<double> t;                // sample times
   std::vector<std::vector<double>> z;   // z[s][i]: height of particle i + 1 at t[s]
   std::vector<Event> events;            // contact begins and ends, floor hits in [t_from, t_to]
+  bool interrupted = false;             // cancelled: the samples and events up to t.back() only
 };
 
-// Throws UnphysicalStateError if the dynamics turns unphysical.
-Trajectory record_trajectory(const TraceSpec& spec);
+// Throws UnphysicalStateError if the dynamics turns unphysical. cancel
+// (simulation/cancellation.hpp): when set, recording stops and what was recorded is returned.
+Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel = nullptr);
 
 // As CSV: the samples (t, z1, ..., zN; 17 significant digits) and the events (t, kind, i, j, speed;
 // kind contact_begin, contact_end or floor_hit, particles numbered from 1, the floor as 0).

@@ -6,6 +6,7 @@
 #include "engines/engine_registry.hpp"
 #include "version.hpp"
 #include "provenance.hpp"
+#include "simulation/run_verdicts.hpp"
 
 namespace granchain {
 
@@ -66,6 +67,7 @@ json run_result_to_json(const RunResult& r) {
   j["stationarity"] = {{"stationary", r.stationary()},
                        {"n_coll", halves(r.n_coll_halves)},
                        {"mean_height", halves(r.height_halves)}};
+  j["warnings"] = run_warnings(r);  // the verdicts above as the sentences the command line prints
   // A value of the wrong sign fails the run (run_driven_column), so a result's audit found none.
   if (r.spec.engine.audit) j["audit"] = {{"instants", r.audit_instants}, {"values", r.audit_values}};
   return j;

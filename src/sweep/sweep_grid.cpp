@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <tuple>
 
 #include "config/input_error.hpp"
 #include "config/value_list.hpp"
@@ -173,6 +175,23 @@ std::vector<SweepPoint> shard_points(const std::vector<SweepPoint>& points, int 
   for (std::size_t j = static_cast<std::size_t>(i - 1); j < points.size(); j += static_cast<std::size_t>(n))
     out.push_back(points[j]);
   return out;
+}
+
+}  // namespace granchain
+
+namespace granchain {
+
+std::vector<std::size_t> table_order(const std::vector<SweepPoint>& points) {
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    const RunSpec& x = points[i].spec;
+    const RunSpec& y = points[j].spec;
+    const std::string_view xe = engine_name(x.engine.kind), ye = engine_name(y.engine.kind);  // by name, as printed
+    return std::tie(xe, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, points[i].replica) <
+           std::tie(ye, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, points[j].replica);
+  });
+  return order;
 }
 
 }  // namespace granchain

@@ -56,3 +56,29 @@ def keyword_form(message, names):
         if "-" in name:
             message = re.sub(r"(?<![\w-])" + re.escape(name) + r"(?![\w-])", name.replace("-", "_"), message)
     return message
+
+
+class ctrl_c_after:
+    """SIGINT to this process `seconds` after entering the block, with Python's own handler
+    installed (a shell's background job starts with SIGINT ignored); `elapsed` is the time from
+    the signal to the end of the block."""
+
+    def __init__(self, seconds):
+        self.seconds = seconds
+
+    def __enter__(self):
+        import signal
+        import threading
+        import time
+        self._signal, self._time = signal, time
+        self._previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+        self._timer = threading.Timer(self.seconds, lambda: os.kill(os.getpid(), signal.SIGINT))
+        self._t0 = time.monotonic()
+        self._timer.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.elapsed = self._time.monotonic() - self._t0 - self.seconds
+        self._timer.join()
+        self._signal.signal(self._signal.SIGINT, self._previous)
+        return False

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import granchain
-from conftest import cli_error, keyword_form
+from conftest import cli_error, ctrl_c_after, keyword_form
 
 
 def test_count_is_the_clis(cli, cli_json, tmp_path):
@@ -92,7 +92,7 @@ def test_keywords_are_the_parameter_tables():
     run_names = {p["name"].replace("-", "_") for p in granchain.run_parameters()}
     assert run_names == set(inspect.signature(granchain.run).parameters) - {"audit", "progress"}
     collapse_names = {p["name"].replace("-", "_") for p in granchain.collapse_parameters()}
-    assert collapse_names == set(inspect.signature(granchain.collapse).parameters) - {"db", "record_collisions"}
+    assert collapse_names == set(inspect.signature(granchain.collapse).parameters) - {"db", "record_collisions", "progress"}
     assert all(p["range"] and p["range"] in p["help"] for p in granchain.collapse_parameters())
 
 
@@ -102,3 +102,34 @@ def test_numbers_typed_or_as_text_count_the_same():
     c = granchain.collapse(N=np.int64(3), e=np.float64(0.05), k=np.float64(1e6), realizations=20, seed=2)
     assert a["n_tot"] == b["n_tot"] == c["n_tot"]
     assert np.array_equal(a["per_realization"]["n_tot"], c["per_realization"]["n_tot"])
+
+
+def test_ctrl_c_ends_a_count_within_a_second_keeping_the_launches_done(tmp_path):
+    # SIGINT while launches of seconds each run: Interrupted within a second, holding the count over
+    # the launches finished before the first unfinished one, which is exactly a count of that many
+    # launches (the same launches: launch r from derive_seed(seed, r)); nothing is stored.
+    db = tmp_path / "c.db"
+    kwargs = dict(N=25, e=0.3, k=1e9, seed=3, threads=2)
+    with ctrl_c_after(1.5) as c:
+        with pytest.raises(granchain.Interrupted) as info:
+            granchain.collapse(realizations=100000, db=db, progress=False, **kwargs)
+    assert c.elapsed < 1.0
+    part = info.value.result
+    assert isinstance(part, granchain.CollapseResult) and not part.complete
+    n = part.parameters.realizations
+    assert 2 <= n < 100000 and len(part.per_realization.n_tot) == n
+    whole = granchain.collapse(realizations=n, progress=False, **kwargs)
+    assert part.per_realization.n_tot.tolist() == whole.per_realization.n_tot.tolist()
+    assert part.n_tot == whole.n_tot and part.n_tot_err == whole.n_tot_err
+    assert not db.exists() or len(granchain.Store(db).collapse()) == 0
+
+
+def test_a_count_is_a_record_with_a_short_repr():
+    r = granchain.collapse(N=3, e=0.05, k=1e6, realizations=20, progress=False)
+    assert isinstance(r, dict) and r.n_tot == r["n_tot"] and r.parameters.N == 3
+    assert len(repr(r)) < 200 and "n_tot = " in repr(r)
+    launches = r.launches()
+    assert launches["realization"].tolist() == list(range(20)) and launches["n_tot"].tolist() == r.per_realization.n_tot.tolist()
+    pd = pytest.importorskip("pandas")
+    frame = r.to_pandas()
+    assert isinstance(frame, pd.DataFrame) and frame["n_tot"].mean() == pytest.approx(r.n_tot, rel=1e-12)

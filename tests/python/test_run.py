@@ -5,6 +5,7 @@ import os
 import signal
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -226,3 +227,34 @@ def test_a_stored_run_is_read_back_not_stored_twice(tmp_path):
     assert len(granchain.Store(db).runs()) == 1
     granchain.run(N=2, T=20, seed=5, db=db)  # a replica on purpose: another seed
     assert len(granchain.Store(db).runs()) == 2
+
+
+def test_quality_verdicts_are_warnings_and_in_the_json(cli_json):
+    # A window of one time unit: not stationary and no plateau for any profile error. The module
+    # raises each verdict of the command's JSON as a QualityWarning, in the same words.
+    expected = cli_json("run", "--N", 25, "--T", 1, "--no-db")["warnings"]
+    assert len(expected) == 2 and "not stationary" in expected[0] and "75 of 75 profile error bars" in expected[1]
+    with pytest.warns(granchain.QualityWarning) as caught:
+        r = granchain.run(N=25, T=1)
+    assert [str(w.message) for w in caught] == expected == r.warnings
+    assert json.loads(r.json)["warnings"] == expected
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a run without reservations warns of nothing
+        assert granchain.run(N=3, e=0.9, k=1e5, T=2000, transient=100).warnings == []
+
+
+def test_a_result_reads_as_a_notebook_expects():
+    r = granchain.run(N=3, e=0.9, k=1e5, T=2000, transient=100)
+    assert isinstance(r, dict) and r.n_coll == r["n_coll"] and r.parameters.N == 3 and r.cost.events > 0
+    text = repr(r)
+    assert len(text) < 200 and text.startswith("RunResult(N=3, e=0.9") and "n_coll = " in text
+    prof = r.profile()
+    assert prof.dtype.names == granchain.RunResult.PROFILE_FIELDS and prof["i"].tolist() == [1, 2, 3]
+    assert prof["K"].tolist() == r.K.tolist()
+    with pytest.raises(AttributeError, match="no field 'ncoll'"):
+        r.ncoll
+    row = r.scalars()
+    assert row["N"] == 3 and row["n_coll"] == r.n_coll and "json" not in row
+    pd = pytest.importorskip("pandas")
+    frame = r.to_pandas()
+    assert isinstance(frame, pd.DataFrame) and frame.index.name == "i" and frame["z_mean"].tolist() == r.z_mean.tolist()

@@ -56,8 +56,28 @@ def test_columns_are_typed(store):
     assert runs["engine"].tolist() == ["exact"] * 3 + ["hard"]
     assert runs["k"].tolist() == [1e5, 1e5, 1e5, math.inf]  # hard spheres: k = inf, not NULL
     assert np.isnan(runs["replica"]).all()  # NULL for runs of `granchain run`
-    d = granchain.export(store, "runs", as_dict=True)
-    assert set(d) == set(runs.dtype.names) and d["n_coll"].tolist() == runs["n_coll"].tolist()
+    d = granchain.export(store, "runs", as_dict=True)  # the CLI's columns, the store's order
+    renamed = {"damping_D": "D"}
+    assert {renamed.get(n, n) for n in d} == set(runs.dtype.names)
+    assert sorted(d["n_coll"].tolist()) == sorted(runs["n_coll"].tolist())
+
+
+def test_store_tables_read_as_a_notebook_reads_them(store):
+    s = granchain.Store(store)
+    runs = s.runs()
+    # sorted by the parameters (engine, N, T0, k, T, e, seed), not by when they were stored
+    keys = list(zip(runs["engine"], runs["N"], runs["T0"], runs["k"], runs["T"], runs["e"], runs["seed"]))
+    assert keys == sorted(keys)
+    assert runs["stationary"].dtype == bool and runs["n_coll_converged"].dtype == bool
+    assert runs["created_utc"].dtype == np.dtype("datetime64[s]")
+    assert (runs["created_utc"] <= np.datetime64("now")).all() and (runs["created_utc"] > np.datetime64("2026-01-01")).all()
+    # the names of run()'s results: K (the store's K_mean, beside k in SQL), D (damping_D)
+    prof = s.profiles(N=3)
+    assert "K" in prof.dtype.names and "K_mean" not in prof.dtype.names and "D" in runs.dtype.names
+    assert set(granchain.RunResult.PROFILE_FIELDS) <= set(prof.dtype.names)
+    with pytest.warns(granchain.QualityWarning):
+        r = granchain.run(N=3, e=0.8, k=1e5, T=1)
+    assert r.derived.D == runs["D"][runs["e"] == 0.8][0]
 
 
 @pytest.mark.parametrize("kwargs,flags", [

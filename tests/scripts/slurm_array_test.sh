@@ -30,7 +30,7 @@ grep -q -- "--array=7 .*slurm-sweep-array.sh" sbatch.args || fail "sbatch got: $
 for count in 16 1; do
   SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 SLURM_ARRAY_TASK_COUNT=$count SLURM_ARRAY_TASK_MAX=7 SLURM_CPUS_PER_TASK=4 \
     GRANCHAIN="$work/bin/granchain" bash "$repo/scripts/slurm-sweep-array.sh"
-  grep -q -- "--shard 7/16 --threads 4 --db shards/fig4-7.db --time-limit 23.5h" granchain.args || fail "task 7 (count $count) ran: $(cat granchain.args)"
+  grep -q -- "--shard 7/16 --threads 4 --db shards/fig5-7.db --time-limit 23.5h" granchain.args || fail "task 7 (count $count) ran: $(cat granchain.args)"
 done
 # A task outside the array's range.
 if SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=17 GRANCHAIN="$work/bin/granchain" bash "$repo/scripts/slurm-sweep-array.sh" 2> err.txt; then
