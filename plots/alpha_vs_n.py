@@ -11,14 +11,14 @@ import sys
 
 import numpy as np
 
-from plot_common import load, plt, save, usage
+from plot_common import PAGE, SEQUENTIAL_2, figure, load, save, usage
 
 
 def main(argv):
     if usage(__doc__, argv, 2):
         return 2
     data = load(argv[1])
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
+    fig, (ax, bx) = figure(PAGE, 2.9, ncols=2)
     markers = {0.1: "o", 0.2: "s", 0.3: "^", 0.4: "v"}
     logs = []
     for e, m in markers.items():
@@ -30,11 +30,11 @@ def main(argv):
                     y.append(a["alpha"])
                     err.append(a["error"])
         if x:
-            ax.errorbar(x, y, yerr=err, fmt=m, ms=4, capsize=2, mfc="none", label="$e = %g$" % e)
+            ax.errorbar(x, y, yerr=err, fmt=m, ms=3, mfc="none", label="$e = %g$" % e)
     for f in data["families"]:
         logs.append(np.log10(f["N"]))
         if f["alpha_bar"]:
-            ax.errorbar(np.log10(f["N"]), f["alpha_bar"]["value"], yerr=f["alpha_bar"]["error"], fmt="D", color="k", ms=4)
+            ax.errorbar(np.log10(f["N"]), f["alpha_bar"]["value"], yerr=f["alpha_bar"]["error"], fmt="D", color="k", ms=3)
     ax.plot([], [], "D", color="k", label=r"mean ($\bar\alpha$)")
     if logs:
         xx = np.linspace(min(logs) - 0.05, max(logs) + 0.05, 20)
@@ -44,24 +44,24 @@ def main(argv):
                     label=r"fit: $%.3f \log_{10} N %+.3f$" % (data["fit"]["slope"], data["fit"]["intercept"]))
     ax.set_xlabel(r"$\log_{10} N$")
     ax.set_ylabel(r"$\alpha$")
-    ax.set_title("(a) global fits", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.set_title("(a) global fits", loc="left")
+    ax.legend(loc="upper left")
     # (b) local exponents per interval of k
     intervals = sorted({(l["k1"], l["k2"]) for f in data["families"] for l in f.get("local_alpha_bar", [])})
-    cmap = plt.get_cmap("plasma")
+    cmap = SEQUENTIAL_2
     for i, (k1, k2) in enumerate(intervals):
         pts = sorted((np.log10(f["N"]), l["alpha"], l["error"]) for f in data["families"]
                      for l in f.get("local_alpha_bar", []) if (l["k1"], l["k2"]) == (k1, k2))
         if pts:
             x, y, err = (np.array(v) for v in zip(*pts))
-            bx.errorbar(x, y, yerr=err, fmt="o-", ms=3, lw=0.8, capsize=2, color=cmap(i / max(1, len(intervals) - 1)),
+            bx.errorbar(x, y, yerr=err, fmt="o-", ms=2.5, lw=0.8, color=cmap(i / max(1, len(intervals) - 1)),
                         label=r"$k = 10^{%d} \ldots 10^{%d}$" % (round(np.log10(k1)), round(np.log10(k2))))
     if logs:
         bx.plot(xx, 0.18 * xx - 0.054, "k--", lw=0.8, label=r"paper: $0.18 \log_{10} N - 0.054$")
     bx.set_xlabel(r"$\log_{10} N$")
     bx.set_ylabel(r"local $\alpha$, mean over $e = 0.1, \ldots, 0.4$")
-    bx.set_title(r"(b) local exponent per interval of $k$", fontsize=10)
-    bx.legend(fontsize=8)
+    bx.set_title(r"(b) local exponent per interval of $k$", loc="left")
+    bx.legend(loc="upper left")
     save(fig, argv[2])
     return 0
 

@@ -2,73 +2,40 @@
 """The paper's Fig. bifurcationdiagram from `granchain reproduce --figure fig6` (fig6.json).
 
 Usage: /usr/bin/python3 plots/bifurcation.py fig6.json PREFIX   -> PREFIX.png and PREFIX.pdf
-1 - e_c1 from b -> 0 (points with one-standard-error bars) and the classification boundary (the bracket
-between the last collapsing and the first uncollapsing e, thin), 1 - e_c2 as the bracket where the
-curvature is convex by 2 errors / not (squares) and where it changes sign (diamonds, the paper's
-reading), against 1/N; the fits (1 - e_c) = A/N of this data (solid) and the paper's A = 2.6 and 3.0
-(dashed, dash-dotted) and its Table 1 values for N = 25, 50 (open symbols); shaded: the e range where
-the profiles show the partially condensed state.
+Against 1/N (top axis: N): 1 - e_c1 from b -> 0 (circles with one-standard-error bars) and
+1 - e_c2 where the curvature changes sign (diamonds, the paper's reading, one standard error);
+two brackets "[" (intervals, not errors): the classification boundary (between the last
+collapsing and the first uncollapsing e) and e_c2 from the curvature (between the last e convex
+by 2 errors and the first that is not); an end beyond the axes is an arrow head. Lines: the fits
+(1 - e_c) = A/N of this data (solid, the colour of their points) and the paper's A = 2.6 and 3.0
+(black dashed, dash-dotted); open symbols: the paper's Table 1 for N = 25, 50; shaded: the e range
+where the profiles show the partially condensed state.
 """
 import sys
 
 import numpy as np
 
-from plot_common import load, plt, save, usage
+from plot_common import PAGE, bracket, bracket_handle, figure, legend_axes, load, plt, save, usage
+
+E_C1, BOUNDARY, E_C2, E_C2_SIGN = "#1f4e9c", "#2a9d8f", "#c0392b", "#e07b00"
 
 
 def main(argv):
     if usage(__doc__, argv, 2):
         return 2
     data = load(argv[1])
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, (ax, lax) = figure(PAGE, 3.2, ncols=2, gridspec_kw={"width_ratios": [1.35, 1]})
     fams = sorted(data["families"], key=lambda f: f["N"])
     inv = np.array([1.0 / f["N"] for f in fams])
-    for f in fams:
-        x = 1.0 / f["N"]
-        if f["e_c1"]:
-            ax.errorbar(x, 1 - f["e_c1"]["value"], yerr=f["e_c1"]["error"], fmt="o", color="tab:blue", capsize=3, ms=4)
-        if f.get("boundary"):
-            lo, hi = 1 - f["boundary"]["high"], 1 - f["boundary"]["low"]
-            ax.errorbar(x * 1.02, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="_", color="tab:cyan", capsize=4, ms=8)
-        if f["e_c2"]:
-            lo, hi = 1 - f["e_c2"]["high"], 1 - f["e_c2"]["low"]
-            ax.errorbar(x, 0.5 * (lo + hi), yerr=0.5 * (hi - lo), fmt="s", color="tab:red", capsize=3, ms=4)
-        if f.get("e_c2_sign"):
-            ax.errorbar(x * 0.98, 1 - f["e_c2_sign"]["value"], yerr=f["e_c2_sign"]["error"], fmt="D", color="tab:orange", capsize=3, ms=4)
-    # The partially condensed region: between the smallest and largest 1 - e flagged, per N.
-    xs, lows, highs = [], [], []
-    for f in fams:
-        if f["condensed_e"]:
-            xs.append(1.0 / f["N"])
-            lows.append(1 - max(f["condensed_e"]))
-            highs.append(1 - min(f["condensed_e"]))
-    if len(xs) >= 2:
-        ax.fill_between(xs, lows, highs, color="0.85", label=r"partially condensed ($K_i$ dip, hot layer above)")
-    elif xs:
-        ax.vlines(xs, lows, highs, color="0.7", lw=6, label=r"partially condensed ($K_i$ dip, hot layer above)")
-    # The paper's own values for N = 25 and 50 (its Table 1, k_B T0 = 1), open symbols.
-    for N, ec1, lo2, hi2 in ((25, 0.894, 0.878, 0.884), (50, 0.944, 0.936, 0.942)):
-        ax.plot(1.0 / N, 1 - ec1, "o", mfc="none", color="tab:blue", ms=7)
-        ax.errorbar(1.0 / N, 1 - 0.5 * (lo2 + hi2), yerr=0.5 * (hi2 - lo2), fmt="s", mfc="none", color="tab:red", ms=7, capsize=3)
-    ax.plot([], [], "o", mfc="none", color="0.3", label=r"paper, Table 1 ($N$ = 25, 50)")
     xx = np.linspace(0, inv.max() * 1.1 if len(inv) else 0.06, 50)
-    ax.plot(xx, 2.6 * xx, "k--", lw=0.8, label=r"paper: $2.6/N$")
-    ax.plot(xx, 3.0 * xx, "k-.", lw=0.8, label=r"paper: $3.0/N$")
-    if data.get("A1"):
-        ax.plot(xx, data["A1"]["A"] * xx, color="tab:blue", lw=0.8, label=r"fit $e_{c1}$: $A$ = %.2f" % data["A1"]["A"])
-    if data.get("A1_boundary"):
-        ax.plot(xx, data["A1_boundary"]["A"] * xx, color="tab:cyan", lw=0.8, label=r"fit boundary: $A$ = %.2f" % data["A1_boundary"]["A"])
-    if data.get("A2"):
-        ax.plot(xx, data["A2"]["A"] * xx, color="tab:red", lw=0.8, label=r"fit $e_{c2}$: $A$ = %.2f" % data["A2"]["A"])
-    if data.get("A2_sign"):
-        ax.plot(xx, data["A2_sign"]["A"] * xx, color="tab:orange", lw=0.8, label=r"fit $e_{c2}$ (sign): $A$ = %.2f" % data["A2_sign"]["A"])
-    ax.plot([], [], "o", color="tab:blue", label=r"$1 - e_{c1}$ ($b \to 0$)")
-    ax.plot([], [], "_", color="tab:cyan", ms=8, label=r"classification boundary")
-    ax.plot([], [], "s", color="tab:red", label=r"$1 - e_{c2}$ (convex by 2 errors / not)")
-    ax.plot([], [], "D", color="tab:orange", label=r"$1 - e_{c2}$ (curvature changes sign)")
-    ax.set_xlim(0, xx.max())
-    # The y range of the points themselves: a wide e_c2 bracket (one power-law e far below the
-    # critical region) is clipped rather than squeezing the rest.
+    handles, labels = [], []
+
+    def entry(handle, label):
+        handles.append(handle)
+        labels.append(label)
+
+    # The y range of the points themselves: a bracket wider than 0.05 in e (a power-law e far below
+    # the critical region) ends in an arrow rather than squeezing the rest.
     tops = [3.0 * xx.max()]
     for f in fams:
         tops += [1 - f["e_c1"]["value"] + f["e_c1"]["error"]] if f["e_c1"] else []
@@ -77,13 +44,78 @@ def main(argv):
             tops.append(1 - f["e_c2_sign"]["value"] + f["e_c2_sign"]["error"])
         if f["e_c2"] and f["e_c2"]["high"] - f["e_c2"]["low"] < 0.05:
             tops.append(1 - f["e_c2"]["low"])
-    ax.set_ylim(0, 1.15 * max(tops))
+    ax.set_xlim(0, xx.max())
+    ax.set_ylim(0, 1.12 * max(tops))
+
+    # The partially condensed region: between the smallest and largest 1 - e flagged, per N.
+    xs, lows, highs = [], [], []
+    for f in fams:
+        if f["condensed_e"]:
+            xs.append(1.0 / f["N"])
+            lows.append(1 - max(f["condensed_e"]))
+            highs.append(1 - min(f["condensed_e"]))
+    if xs:
+        if len(xs) >= 2:
+            ax.fill_between(xs, lows, highs, color="0.88", lw=0)
+        else:
+            ax.vlines(xs, lows, highs, color="0.8", lw=6)
+        entry(plt.Rectangle((0, 0), 1, 1, color="0.88"), r"partially condensed ($K_i$ dip, hot layer above)")
+
+    # Measured points: error bars for e_c1 and e_c2 (sign), brackets for the two intervals, each
+    # kind a few points apart sideways so that none hides another.
+    for f in fams:
+        x = 1.0 / f["N"]
+        if f["e_c1"]:
+            ax.errorbar(x, 1 - f["e_c1"]["value"], yerr=f["e_c1"]["error"], fmt="o", color=E_C1, ms=3.5, capsize=2)
+        if f.get("e_c2_sign"):
+            ax.errorbar(x, 1 - f["e_c2_sign"]["value"], yerr=f["e_c2_sign"]["error"], fmt="D", color=E_C2_SIGN, ms=3,
+                        capsize=2, transform=ax.transData + _shift(fig, -3))
+        if f.get("boundary"):
+            bracket(ax, x, 1 - f["boundary"]["high"], 1 - f["boundary"]["low"], BOUNDARY, offset_pt=3)
+        if f["e_c2"]:
+            bracket(ax, x, 1 - f["e_c2"]["high"], 1 - f["e_c2"]["low"], E_C2, offset_pt=6)
+
+    # The paper's Table 1 (N = 25, 50, k_B T0 = 1): open symbols.
+    for N, ec1, lo2, hi2 in ((25, 0.894, 0.878, 0.884), (50, 0.944, 0.936, 0.942)):
+        ax.plot(1.0 / N, 1 - ec1, "o", mfc="none", color=E_C1, ms=6, mew=0.8)
+        ax.plot(1.0 / N, 1 - 0.5 * (lo2 + hi2), "s", mfc="none", color=E_C2, ms=6, mew=0.8)
+    entry(plt.Line2D([], [], ls="none", marker="o", mfc="none", color="0.3", ms=6, mew=0.8),
+          r"paper, Table 1 ($N$ = 25, 50): $e_{c1}$ (circle), $e_{c2}$ (square)")
+
+    ax.plot(xx, 2.6 * xx, "k--", lw=0.7)
+    ax.plot(xx, 3.0 * xx, "k-.", lw=0.7)
+    entry(plt.Line2D([], [], color="k", ls="--", lw=0.7), r"paper: $2.6/N$")
+    entry(plt.Line2D([], [], color="k", ls="-.", lw=0.7), r"paper: $3.0/N$")
+    kinds = (("A1", E_C1, "o", r"$1 - e_{c1}$ ($b \to 0$), error bar"),
+             ("A1_boundary", BOUNDARY, None, r"classification boundary, bracket"),
+             ("A2", E_C2, None, r"$1 - e_{c2}$, convex by 2 errors / not, bracket"),
+             ("A2_sign", E_C2_SIGN, "D", r"$1 - e_{c2}$, curvature changes sign, error bar"))
+    for key, colour, marker, label in kinds:
+        point = (plt.Line2D([], [], ls="none", marker=marker, color=colour, ms=3.5) if marker
+                 else bracket_handle(colour))
+        if data.get(key):
+            A = data[key]["A"]
+            ax.plot(xx, A * xx, color=colour, lw=0.8)
+            entry((point, plt.Line2D([], [], color=colour, lw=0.8)), label + "; fit $A$ = %.2f" % A)
+        else:
+            entry(point, label)
+
+    top = ax.secondary_xaxis("top")  # the same 1/N, labelled with N at each N drawn
+    top.set_xticks([1.0 / f["N"] for f in fams])
+    top.set_xticklabels(["%d" % f["N"] for f in fams], fontsize=6)
+    top.set_xlabel(r"$N$")
     ax.set_xlabel(r"$1/N$")
     ax.set_ylabel(r"$1 - e$")
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
-    ax.set_title("power-law collapse (top), logarithmic, uncollapsing (bottom)", fontsize=10)
+    ax.text(0.97, 0.03, "above the lines: power-law collapse;\nbelow: logarithmic, then uncollapsing",
+            transform=ax.transAxes, ha="right", va="bottom", fontsize=7)
+    legend_axes(lax, handles, labels, loc="center left", handlelength=2.4)
     save(fig, argv[2])
     return 0
+
+
+def _shift(fig, points):
+    from matplotlib.transforms import ScaledTranslation
+    return ScaledTranslation(points / 72.0, 0, fig.dpi_scale_trans)
 
 
 if __name__ == "__main__":

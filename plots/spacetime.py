@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 
-from plot_common import plt, save_file
+from plot_common import COLUMN, figure, save_file
 
 
 def main(argv):
@@ -18,16 +18,15 @@ def main(argv):
     data = np.genfromtxt(argv[1], delimiter=",", names=True)
     names = data.dtype.names
     t = data[names[0]]
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = figure(COLUMN, 2.6)
     for name in names[1:]:
-        ax.plot(t, data[name], lw=0.7, color="k")
+        ax.plot(t, data[name], lw=0.5, color="k")
     ax.set_xlabel(r"$t$")
     ax.set_ylabel(r"$z_i$ (height of particle $i$)")
     ax.set_xlim(t[0], t[-1])
     if len(argv) > 3:
-        ax.set_title(argv[3], fontsize=9)
-    fig.tight_layout()
-    save_file(fig, argv[2], dpi=150)
+        ax.set_title(argv[3], loc="left")
+    save_file(fig, argv[2])
     stem = argv[2].rsplit(".", 1)[0]
     save_file(fig, stem + ".pdf")
     return 0

@@ -10,7 +10,7 @@ import sys
 
 import numpy as np
 
-from plot_common import plt, save, usage
+from plot_common import PAGE, figure, save, usage
 
 
 def main(argv):
@@ -20,14 +20,14 @@ def main(argv):
     names = data.dtype.names
     ev = np.genfromtxt(argv[2], delimiter=",", names=True, dtype=None, encoding="utf-8")
     q, tau_c = float(argv[4]), float(argv[5])
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    fig, axes = figure(PAGE, 2.6, ncols=2)
     ax = axes[0]
     for i, n in enumerate(names[1:]):
         ax.plot(data[names[0]], data[n], lw=1.0, label="particle %d" % (i + 1))
     ax.set_xlabel(r"$t$")
     ax.set_ylabel(r"$z_i$")
-    ax.legend(fontsize=8)
-    ax.set_title(r"(a) three particles collapse: $e = 0.065 < e_c(3)$", fontsize=10)
+    ax.legend()
+    ax.set_title(r"(a) three particles collapse: $e = 0.065 < e_c(3)$", loc="left")
     ends = np.atleast_1d(ev)
     t12 = np.array([row["t"] for row in ends if row["kind"] == "contact_end" and row["i"] == 1 and row["j"] == 2])
     ax = axes[1]
@@ -40,8 +40,8 @@ def main(argv):
         ax.axhline(tau_c, color="0.5", lw=0.8, ls=":", label=r"$\tau_c$")
     ax.set_xlabel(r"$n$ (collisions of the pair 1–2)")
     ax.set_ylabel(r"interval $t_{12}$")
-    ax.legend(fontsize=8)
-    ax.set_title("(b) geometric intervals", fontsize=10)
+    ax.legend()
+    ax.set_title("(b) geometric intervals", loc="left")
     save(fig, argv[3])
     return 0
 

@@ -246,7 +246,7 @@ TEST_F(SweepCli, PrintedSweepsFillTheStoreTheFigureReuses) {
   ASSERT_EQ(fig.exit_code, 0) << fig.err;
   EXPECT_NE(fig.err.find("1800 runs, 1800 already in s.db, 0 to run"), std::string::npos) << fig.err;
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), 1800);
-  EXPECT_TRUE(fs::exists(dir_ / "figs/fig4_N6_T01_exact.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "figs/fig4.png"));
   EXPECT_TRUE(fs::exists(dir_ / "figs/report-fig4.md"));
 }
 
@@ -267,11 +267,16 @@ TEST_F(SweepCli, SmokePresetDrawsEveryFigureAndTable1) {
     stored = now;
   }
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"fig1.png", "fig2.pdf", "fig3_N3_T01_exact.png", "fig4_N6_T01_exact.pdf", "fig5_N25_T01_exact.png",
+  for (const char* f : {"fig1.png", "fig2.pdf", "fig3.png", "fig4.pdf", "fig5_N25_T01_exact.png",
                         "fig6.png", "fig6.pdf", "fig7.png", "fig8.png", "fig9.png", "fig10.png", "table1.csv", "report.md",
                         "report-fig6.md", "report-fig7.md", "report-fig9.md", "report-table1.md", "report-all.md"})
     EXPECT_TRUE(fs::exists(dir_ / "figs" / f)) << f;
+  // fig3 and fig4 share one sweep but draw it differently (against log k, against e): not one figure twice.
+  EXPECT_NE(slurp(dir_ / "figs/fig3.png"), slurp(dir_ / "figs/fig4.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "figs/fig3_N3_T01_exact.png"));
   const std::string all = slurp(dir_ / "figs/report-all.md");
+  // The report names the command that made it, with the flags given (no --db: the default store).
+  EXPECT_EQ(all.rfind("# granchain reproduce --figure all --preset smoke --out figs\n", 0), 0u) << all.substr(0, 200);
   for (const char* fig : {"| fig1 |", "| fig6 |", "| fig7 |", "| fig8 |", "| fig9 |", "| fig10 |", "| table1 |"})
     EXPECT_NE(all.find(std::string(fig)), std::string::npos) << fig;
   EXPECT_EQ(all.find("failed"), std::string::npos) << all.substr(0, 800);
@@ -320,7 +325,11 @@ TEST_F(SweepCli, StoredOnlyDrawsFromWhatIsStoredAndRunsNothing) {
   ASSERT_EQ(part.exit_code, 0) << part.err;
   EXPECT_NE(part.err.find("12 runs, 10 in s.db; --stored-only: drawn from those, 2 missing"), std::string::npos) << part.err;
   EXPECT_TRUE(fs::exists(dir_ / "figs/fig8.png"));
-  EXPECT_NE(slurp(dir_ / "figs/report-fig8.md").find("**Partial (--stored-only): drawn from the runs stored so far — "), std::string::npos);
+  const std::string fig8 = slurp(dir_ / "figs/report-fig8.md");
+  EXPECT_NE(fig8.find("**Partial (--stored-only): drawn from the runs stored so far — "), std::string::npos);
+  // Its Command: line repeats the command, --db, --stored-only and --out as given.
+  EXPECT_NE(fig8.find("Command: `granchain reproduce --figure fig8 --preset smoke --db s.db --stored-only --out figs`."),
+            std::string::npos) << fig8.substr(0, 400);
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs"), stored);
   const CliResult empty = run("reproduce --figure fig3 --preset smoke --db s.db --out figs --stored-only");
   EXPECT_EQ(empty.exit_code, 2);

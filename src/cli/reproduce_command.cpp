@@ -190,11 +190,13 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; about 13.5 CPU-hours in all, most of it fig6 and fig9),\n"
       "smoke (k = 1e4..1e6, T = 20 and 5, fewer free-space launches: every code path in about 35 s; the numbers\n"
       "mean nothing, it checks the pipeline).\n"
-      "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.");
+      "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.\n" +
+      exit_codes_help("2 bad input (nothing run), 3 a run turned unphysical, 4 a store or output could not be written, 75 "
+                      "--time-limit left runs for a repeat of the command"));
   sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, beyond; default fig5");
   sub_->add_option("--preset", impl_->preset, "quick (default), paper or smoke (a pipeline check)");
-  sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
-  sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
+  CLI::Option* db_option = sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
+  CLI::Option* out_option = sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
   auto threads_text = std::make_shared<std::string>();
   CLI::Option* threads_option =
       sub_->add_option("--threads", *threads_text, "points run at once; integer 1 <= threads <= 1024; default all cores")
@@ -220,7 +222,9 @@ Subcommand add_reproduce_command(CLI::App& app) {
   sub_->add_flag("--print-sweeps", impl_->print_sweeps,
                  "print the `granchain sweep` commands of the chosen figures' driven-column runs (for mpirun or job arrays "
                  "into one store; reproduce --db STORE then reuses every point) and run nothing");
-  return {sub_, [impl_, threads_option, threads_text, time_limit_option, time_limit_text] {
+  return {sub_, [impl_, db_option, out_option, threads_option, threads_text, time_limit_option, time_limit_text] {
+            impl_->db_given = db_option->count() > 0;  // for the reports' Command: lines
+            impl_->out_given = out_option->count() > 0;
             return execute_reproduce(impl_, threads_option->count() > 0 ? threads_text.get() : nullptr,
                                      time_limit_option->count() > 0 ? time_limit_text.get() : nullptr);
           }};

@@ -130,10 +130,10 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o, ReproductionLog& lo
   }
   const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
   FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
-  out.markdown = fmt::format("Command: `granchain reproduce --figure fig6 --preset {}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
+  out.markdown = fmt::format("Command: `{}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
                              "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
                              "its fit lines (Eq. e-fit) stand in.\n\n",
-                             o.preset, s.grid_text);
+                             reproduce_command_line(o), s.grid_text);
   out.markdown += table + "\n| fit | measured | paper |\n|---|---|---|\n" + (fits.empty() ? "| (1 − e_c) = A/N | fewer than two N with e_c found | |\n" : fits);
   out.markdown += "\nThe classification boundary enters its fit as the midpoint of the bracket with the bracket's width / √12 as "
                   "error; e_c2 (convex by 2 errors / not) likewise with its half-width.";
@@ -172,10 +172,10 @@ FigureOutcome reproduce_scaling_collapse(const ReproduceFlags& o, ReproductionLo
   }
   const std::string drawn = draw_figure(o, "fig7", plot, "scaling_collapse.py");
   FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
-  out.markdown = fmt::format("Command: `granchain reproduce --figure fig7 --preset {}`. The sweep of fig6; {} points classified "
+  out.markdown = fmt::format("Command: `{}`. The sweep of fig6; {} points classified "
                              "logarithmically collapsing, their slopes b per decade of k. Figure: `fig7.png` (and .pdf): (a) b/N^(5/2) "
                              "against X with A = 2.6, (b) with this sweep's A, (c) b/N^(1/2) against N(1 − e).\n\n",
-                             o.preset, pts.size());
+                             reproduce_command_line(o), pts.size());
   out.markdown += table + "\nThe paper (Eq. b_e_N): b = 1.5 N^(5/2) ((1 − e) − 2.6/N)^2 over its logarithmic ranges "
                           "(0.835 ≤ e ≤ 0.900 for N = 20 … 0.972 ≤ e ≤ 0.979 for N = 150).\n";
   out.markdown += excluded_markdown(s.a);
@@ -219,9 +219,9 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log
   }
   const std::string drawn = draw_figure(o, "fig9", plot, "alpha_vs_n.py");
   FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
-  out.markdown = fmt::format("Command: `granchain reproduce --figure fig9 --preset {}`. The sweep of fig6; α is the exponent of "
+  out.markdown = fmt::format("Command: `{}`. The sweep of fig6; α is the exponent of "
                              "n_coll = c k^α fitted over k >= {}. Figure: `fig9.png` (and .pdf).\n\n",
-                             o.preset, power_of_ten_text(preset_k_min(o)));
+                             reproduce_command_line(o), power_of_ten_text(preset_k_min(o)));
   out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
   // The same line through the local exponents of each interval of k: how Eq. alphafit's slope
   // depends on where in k the exponent is read.
@@ -280,9 +280,9 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o, ReproductionLog& log) {
     }
   write_output(output_path(o, "table1.csv"), csv);
   FigureOutcome out{s.status, "", output_path(o, "table1.csv"), s.a.run_seconds, "", s.failed};
-  out.markdown = fmt::format("Command: `granchain reproduce --figure table1 --preset {}`. N = 25, 50 at k_B T0 = 1, 2, 4, 10; {}. "
+  out.markdown = fmt::format("Command: `{}`. N = 25, 50 at k_B T0 = 1, 2, 4, 10; {}. "
                              "Also `table1.csv`.\n\n",
-                             o.preset, s.grid_text);
+                             reproduce_command_line(o), s.grid_text);
   out.markdown += table + "\nThe paper finds e_c1, e_c2 and ᾱ independent of T0 for 1 ≤ k_B T0 ≤ 10. Tested here per N against "
                           "log10 k_B T0 (weighted; the runs of different T0 are independent; e_c1 with its statistical error, since "
                           "its systematic part is common to every T0; the brackets of the table are grid steps, compared by "

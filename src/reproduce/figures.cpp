@@ -71,6 +71,29 @@ std::vector<CollapseSpec> count_specs(const std::vector<CountSeries>& series, co
   return specs;
 }
 
+namespace {
+
+// A word as a POSIX shell reads it back: as it is when it holds only safe characters, else in single quotes.
+std::string shell_word(const std::string& word) {
+  const bool plain = !word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                                                             "_-+=.,/:@%") == std::string::npos;
+  if (plain) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+std::string reproduce_command_line(const ReproduceFlags& o) {
+  std::string line = fmt::format("granchain reproduce --figure {} --preset {}", shell_word(o.figure), shell_word(o.preset));
+  if (o.db_given) line += " --db " + shell_word(o.db);
+  if (o.stored_only) line += " --stored-only";
+  if (o.k_min > 0) line += " --k-min " + power_of_ten_text(o.k_min);
+  if (o.out_given) line += " --out " + shell_word(o.out);
+  return line;
+}
+
 double ReproduceFlags::time_left() const {
   if (!(time_limit > 0)) return std::numeric_limits<double>::infinity();
   return time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - started_at).count();

@@ -16,6 +16,7 @@ namespace granchain {
 
 struct ReproduceFlags {
   std::string figure = "fig5", preset = "quick", db = "reproduce.db", out = "reproduce";
+  bool db_given = false, out_given = false;  // --db, --out on the command line (else the defaults above)
   int threads = 0;  // resolved to all cores before a figure runs
   bool quiet = false;
   bool print_sweeps = false;  // print the equivalent `granchain sweep` commands and run nothing
@@ -73,6 +74,12 @@ struct GridBlock {
   std::string N, e, k, T, T0 = "1";
   int replicas = 1;  // independent runs (seeds) per point
 };
+
+// The command that reproduces a report of o.figure, for its "Command:" line: `granchain reproduce
+// --figure F --preset P`, then --db and --out as given (paths as the user wrote them, quoted for a
+// shell where needed), --stored-only and --k-min when given; not the flags that leave the report as it
+// is (--threads, --time-limit, --quiet).
+std::string reproduce_command_line(const ReproduceFlags& o);
 
 // The presets' k grids and times. quick: k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and
 // 100 for N >= 50; paper: k = 1e5..1e10, fits over k >= 1e6, T = 1e4 and 1e3 (the paper's);

@@ -47,7 +47,8 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o, ReproductionL
     }
     if (s.N == 3) {
       const KSlope last = k_slope(results[results.size() - 2], results.back());  // per decade of k
-      js["slope_per_decade"] = std::log(10.0) * theory::collisions_slope_per_ln_k(s.e);
+      js["slope_per_decade"] = std::log(10.0) * theory::collisions_slope_per_ln_k(s.e);  // all collisions
+      js["ntot_log_slope_per_decade"] = std::log(10.0) * theory::ntot_slope_per_ln_k(s.e);  // Eq. ntot-log
       n3 += fmt::format("| {:g} | {:.3f} ± {:.3f} ({:g} → {:g}) | {:.4f} | {:.4f} |\n", s.e, last.per_log10_k, last.error, last.k1, last.k2,
                         std::log(10.0) * theory::collisions_slope_per_ln_k(s.e), std::log(10.0) * theory::ntot_slope_per_ln_k(s.e));
     } else {
@@ -61,10 +62,10 @@ FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o, ReproductionL
   }
   const std::string drawn = draw_figure(o, "fig10", plot, "ntot.py");
   FigureOutcome out{FigureStatus::Done, "", drawn, -1.0, "", {}};
-  out.markdown = fmt::format("Command: `granchain reproduce --figure fig10 --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
+  out.markdown = fmt::format("Command: `{}`. Free-space launches of Sec. III.D (a = v0 = 1, "
                              "dv0 = 0.1, stop rule `ends`), exact engine; the same launches at every k, so slopes are paired per launch. "
                              "Figure: `fig10.png` (and .pdf).\n\n",
-                             o.preset);
+                             reproduce_command_line(o));
   out.markdown += "### N = 3\n\nThe paper's Eq. ntot-log counts intervals between collisions of one pair; all collisions grow twice as "
                   "fast (docs/collapse.md).\n\n" + n3 + "\n### N = 25\n\nThe paper: n_tot ∝ k^α with α ≈ 0.2 for e ≲ 0.6.\n\n" + n25;
   return out;

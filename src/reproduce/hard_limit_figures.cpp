@@ -243,12 +243,12 @@ std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o) { r
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o, ReproductionLog& log) {
   const double k_fit = o.smoke() ? 1e4 : 1e5;
   nlohmann::json plot = {{"title", "free-space collapse"}, {"y_label", "n_tot"}, {"series", nlohmann::json::array()}};
-  std::string md = fmt::format("Command: `granchain reproduce --figure limit-free --preset {}`. Free-space launches of Sec. III.D (a = v0 = 1, "
+  std::string md = fmt::format("Command: `{}`. Free-space launches of Sec. III.D (a = v0 = 1, "
                                "dv0 = 0.1, stop rule `ends`), exact engine, the same launches at every k: local exponents "
                                "α = ln(n2/n1)/ln(k2/k1) per decade with errors from the paired launches, and the forms fitted with "
                                "the covariance of the counts across k estimated from the launches. Counts are stored in --db (table "
                                "collapse_runs) and reused. Figure: `limit-free.png` (and .pdf).\n",
-                               o.preset);
+                               reproduce_command_line(o));
   // The upper window: the forms fitted again over k >= 1e10 where a series reaches 1e16, to see
   // whether the verdict is the asymptotic one or the drift of the lower decades.
   const double k_upper = 1e10;
@@ -333,12 +333,12 @@ FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o, ReproductionLo
   const StoreAnalysis a = analyze_points(o.db, points, k_fit);
   const std::string T = driven_limit_grid(o)[0].T;
   nlohmann::json plot = {{"title", "driven column"}, {"y_label", "n_coll"}, {"series", nlohmann::json::array()}};
-  std::string md = fmt::format("Command: `granchain reproduce --figure limit-driven --preset {}`. Driven column, k_B T0 = 1, "
+  std::string md = fmt::format("Command: `{}`. Driven column, k_B T0 = 1, "
                                "measuring time T = {} (transient T/10), exact engine, one run per point (runs stored in --db and "
                                "reused, so the paper preset shares fig5's points up to k = 1e10). Local exponents between successive k "
                                "with errors from the two runs' blocking errors; forms fitted over k ≥ {} with independent errors. "
                                "Figure: `limit-driven.png` (and .pdf).\n",
-                               o.preset, T, power_of_ten_text(k_fit));
+                               reproduce_command_line(o), T, power_of_ten_text(k_fit));
   for (const auto& fam : a.report.families)
     for (const auto& c : fam.curves) {
       std::vector<double> k, y, err;

@@ -382,11 +382,11 @@ FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o, Reproductio
                                                                                          : std::vector<double>{1e6, 1e8, 1e10};
   nlohmann::json plot = {{"N", kN}, {"event_gap", kEventGap}, {"hard", nlohmann::json::array()}, {"soft", nlohmann::json::array()}};
   std::string md = fmt::format(
-      "Command: `granchain reproduce --figure intervals --preset {}`. Free-space launches of Sec. III.D at N = {} (a = v0 = 1, dv0 = 0.1). "
+      "Command: `{}`. Free-space launches of Sec. III.D at N = {} (a = v0 = 1, dv0 = 0.1). "
       "Hard spheres: the engine's collapse watch (1000 collisions within 1e-9) marks the collapse; t* is the time of the last "
       "collision. Soft spheres: exact engine, stop rule `ends`; a collapse event is a run of at least {} collisions whose successive "
       "gaps (next contact begins − last one ended) are below {:g} τ_c. Figure: `intervals.png` (and .pdf).\n",
-      o.preset, kN, kEventMin, kEventGap);
+      reproduce_command_line(o), kN, kEventMin, kEventGap);
   for (double e : {0.3, 0.5}) {
     Section h = hard_sequences(e, hard_launches, o);
     Section s = soft_sequences(e, ks, soft_launches, o);

@@ -80,8 +80,9 @@ std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o) {
 }
 
 // Figs. cflogk, cfe (fig3, fig4: one sweep over N = 3..6, e = 0.05..1.0 by 0.05 refined around
-// each e_c(n)) and cfreqlogN25
-// (fig5: N = 25 on the paper's e grids), at the preset's k and T.
+// each e_c(n); fig3.png draws it against log k, fig4.png against e, plots/small_n.py) and
+// cfreqlogN25 (fig5: N = 25 on the paper's e grids, the panels of plots/ncoll_panels.py), at the
+// preset's k and T.
 FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o, ReproductionLog& log) {
   const bool fig5 = o.figure == "fig5";
   const GridBlock grid = ncoll_grid(o).front();
@@ -99,20 +100,27 @@ FigureOutcome reproduce_ncoll_figure(const ReproduceFlags& o, ReproductionLog& l
       for (int n = 3; n <= fam["N"].get<int>() + 1; ++n) lines.push_back(theory::ec_free(n));
       fam["ec_lines"] = lines;
     }
-  const std::string prefix = output_path(o, o.figure);
-  const std::string problem = draw_ncoll_panels(a, prefix, "--out");
-  if (!problem.empty()) throw std::runtime_error(problem);
   FigureOutcome out;
+  if (fig5) {  // the panels of `analyze --plot` for N = 25: fig5_N25_T01_exact.png
+    const std::string prefix = output_path(o, o.figure);
+    const std::string problem = draw_ncoll_panels(a, prefix, "--out");
+    if (!problem.empty()) throw std::runtime_error(problem);
+    out.drawn = prefix + "_N25_T01_exact.png (and .pdf)";
+  } else {  // fig3 and fig4 analyse one sweep: fig3.png draws it against log k (cflogk), fig4.png against e (cfe)
+    nlohmann::json plot = a.json;
+    plot["figure"] = o.figure == "fig3" ? "cflogk" : "cfe";
+    out.drawn = draw_figure(o, o.figure, plot, "small_n.py");
+  }
   out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   out.failed_points = failures;
   out.run_seconds = a.run_seconds;
-  out.drawn = fmt::format("{}_N{}_T01_exact.png (and .pdf)", prefix, fig5 ? "25" : "<N>");
   out.markdown = fmt::format(
-      "Command: `granchain reproduce --figure {} --preset {}`. N = {}, k_B T0 = 1, exact engine, e = {}, k = {}, "
-      "T = {} (transient T/10), {} runs; fits over k >= {}. Figures: `{}_N<N>_T01_exact.png` (and .pdf): "
-      "{}.\n\n",
-      o.figure, o.preset, grid.N, grid.e, grid.k, grid.T, a.runs, power_of_ten_text(preset_k_min(o)), o.figure,
-      fig5 ? "panels (a)–(d) as the paper's Fig. cfreqlogN25" : "panel (a) is Fig. cflogk, panel (d) Fig. cfe, panel (b) the e_c(n) region");
+      "Command: `{}`. N = {}, k_B T0 = 1, exact engine, e = {}, k = {}, T = {} (transient T/10), {} runs; fits over "
+      "k >= {}. {}.\n\n",
+      reproduce_command_line(o), grid.N, grid.e, grid.k, grid.T, a.runs, power_of_ten_text(preset_k_min(o)),
+      fig5 ? "Figure: `fig5_N25_T01_exact.png` (and .pdf): panels (a)–(d) as the paper's Fig. cfreqlogN25"
+      : o.figure == "fig3" ? "Figure: `fig3.png` (and .pdf): the paper's Fig. cflogk, n_coll against log10 k, one panel per N"
+                           : "Figure: `fig4.png` (and .pdf): the paper's Fig. cfe, n_coll against e, one panel per N");
   out.markdown += fig5 ? fig5_table(a) : small_n_table(a) + fine_structure_report(o.db, points);
   out.markdown += "Every (N, e): regime, slope b per decade of k, exponent α, curvature against log10 k, K_i inversion:\n\n```\n" +
                   analysis_text(a) + "```\n";
@@ -159,10 +167,10 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o, Reproducti
   out.run_seconds = a.run_seconds;
   out.drawn = drawn;
   out.markdown = fmt::format(
-      "Command: `granchain reproduce --figure fig8 --preset {}`. N = 25, k_B T0 = 1, k = {}, T = {}, e = {} (exact engine); "
+      "Command: `{}`. N = 25, k_B T0 = 1, k = {}, T = {}, e = {} (exact engine); "
       "σ_0,i is the exact elastic column's (docs/theory.md), the run at e = 1 checks it. Figure: `fig8.png` (and .pdf): "
       "(a) σ_i/σ_0,i, (b) K_i, against the particle index i.\n\n",
-      o.preset, grid.k, grid.T, grid.e);
+      reproduce_command_line(o), grid.k, grid.T, grid.e);
   out.markdown += table;
   out.markdown += fmt::format(
       "\nPartially condensed (K_i rises above its dip by more than 3 standard errors) at e = {}; the paper (k = 1e10): a "

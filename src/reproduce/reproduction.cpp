@@ -169,8 +169,8 @@ ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, c
     result.computing = compute_within_time_limit(chosen, o, log);
     if (result.computing.status != FigureStatus::Done) return result;
   }
-  std::string all = fmt::format("# granchain reproduce --figure {} --preset {}\n\n"
-      "| figure | label | result | wall time | its runs' CPU time, summed |\n|---|---|---|---|---|\n", o.figure, o.preset);
+  std::string all = fmt::format("# {}\n\n"
+      "| figure | label | result | wall time | its runs' CPU time, summed |\n|---|---|---|---|---|\n", reproduce_command_line(o));
   std::string sections;
   for (const FigureEntry* f : chosen) {
     const auto start = std::chrono::steady_clock::now();

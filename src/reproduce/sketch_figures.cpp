@@ -45,12 +45,12 @@ FigureOutcome reproduce_model_sketch(const ReproduceFlags& o, ReproductionLog&) 
   }
   FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)", -1.0, "", {}};
   out.markdown = fmt::format(
-      "Command: `granchain reproduce --figure fig1`. The paper's Fig. 1 is a schematic. Here: (a) a sketch of the slope flow and "
+      "Command: `{}`. The paper's Fig. 1 is a schematic. Here: (a) a sketch of the slope flow and "
       "the line z perpendicular to the slope, (b) the model — N = 25 spheres of diameter d = 1 on a vertical line under gravity "
       "g = 1, the bottom one driven by a thermal floor at k_B T0 = 1 — as a snapshot at t = {:g} of a simulated column "
       "(e = 0.9, k = 1e6, seed 1, exact engine), (c) z_i(t) of that column for {:g} ≤ t ≤ {:g}: {} collisions between "
       "neighbours and {} floor hits in the window. Data: `fig1-trace.csv`.\n",
-      spec.t_to, spec.t_from, spec.t_to, contacts, floor_hits);
+      reproduce_command_line(o), spec.t_to, spec.t_from, spec.t_to, contacts, floor_hits);
   return out;
 }
 
@@ -80,12 +80,12 @@ FigureOutcome reproduce_three_body(const ReproduceFlags& o, ReproductionLog&) {
   for (const Event& e : tr.events) ends += e.kind == EventKind::ContactEnd;
   FigureOutcome out{FigureStatus::Done, "", prefix + ".png (and .pdf)", -1.0, "", {}};
   out.markdown = fmt::format(
-      "Command: `granchain reproduce --figure fig2`. The paper's Fig. 2 is a schematic. Here a simulated three-body collapse in free "
+      "Command: `{}`. The paper's Fig. 2 is a schematic. Here a simulated three-body collapse in free "
       "space: launch 0 of Sec. III.D (a = v0 = 1, dv0 = 0.1, seed 1), e = 0.065 < e_c(3) = {:.4f}, k = 1e14 (τ_c = {:.3g}), exact "
       "engine: (a) z_i(t), (b) the intervals t12 between successive collisions of the pair (1, 2) against their index, with "
       "the ratio q = {:.4f} of Eq. (def_q) and τ_c. {} collisions in all; the ratios of successive t12: {}. They approach q "
       "and stop once t12 nears τ_c. Data: `fig2-trace.csv`, `fig2-events.csv`.\n",
-      theory::ec3(), tau_c, q, ends, ratios.empty() ? "-" : ratios);
+      reproduce_command_line(o), theory::ec3(), tau_c, q, ends, ratios.empty() ? "-" : ratios);
   return out;
 }
 
