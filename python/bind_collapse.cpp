@@ -168,19 +168,16 @@ py::dict collapse(const py::kwargs& kwargs) {
   std::atomic<int> launches_done{0};
   std::atomic<std::uint64_t> collisions{0};
   const auto start = std::chrono::steady_clock::now();
-  auto last = start;
-  const auto tick = [&] {
-    if (!q.progress) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last).count() < 0.5) return;
-    last = now;
-    py::dict d;
-    d["done"] = launches_done.load();
-    d["total"] = q.spec.realizations;
-    d["collisions"] = collisions.load();
-    d["elapsed"] = std::chrono::duration<double>(now - start).count();
-    (*q.progress)(d);
-  };
+  std::function<void()> progress;
+  if (q.progress)
+    progress = [&] {
+      py::dict d;
+      d["done"] = launches_done.load();
+      d["total"] = q.spec.realizations;
+      d["collisions"] = collisions.load();
+      d["elapsed"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      (*q.progress)(d);
+    };
   const auto work = [&] {
     CollisionLog log;
     if (q.record) log = [&recs](const std::vector<CollisionRecord>& r) { recs.insert(recs.end(), r.begin(), r.end()); };
@@ -194,7 +191,7 @@ py::dict collapse(const py::kwargs& kwargs) {
       id = store.insert_collapse(result);
     }
   };
-  std::optional<py::error_already_set> stop = run_interruptible(cancel, work, tick);
+  std::optional<py::error_already_set> stop = run_interruptible(cancel, work, progress);
   if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);  // the progress callback's own error
   // Ctrl-C: interrupted, whether or not the count had finished (then it is whole, and stored).
   py::dict d = collapse_dict(result, recs, q.record, q.db, id);

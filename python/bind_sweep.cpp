@@ -155,15 +155,9 @@ py::dict sweep(const py::kwargs& kwargs) {
   runner.set_point_progress_every(0.2);  // a cancel reaches a running point within about this
   std::atomic<bool> cancel{false};
   runner.watch(&cancel);
-  double last = -1;
-  const auto tick = [&] {
-    if (!q.progress) return;
-    const SweepProgress p = runner.progress();
-    if (last >= 0 && p.elapsed - last < 0.5) return;
-    last = p.elapsed;
-    (*q.progress)(progress_dict(p, n_reused));
-  };
-  std::optional<py::error_already_set> stop = run_interruptible(cancel, [&] { runner.run(q.threads); }, tick);
+  std::function<void()> progress;
+  if (q.progress) progress = [&] { (*q.progress)(progress_dict(runner.progress(), n_reused)); };
+  std::optional<py::error_already_set> stop = run_interruptible(cancel, [&] { runner.run(q.threads); }, progress);
   if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);  // the progress callback's own error
   if (q.progress && !stop) {
     SweepProgress p = runner.progress();

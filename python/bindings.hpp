@@ -44,14 +44,14 @@ std::optional<py::object> take(std::map<std::string, py::object>& args, const st
 // A path argument (str or os.PathLike) as text; ValueError naming `option` otherwise.
 std::string path_text(const py::handle& value, const std::string& option);
 
-// Runs `work` on a thread of its own without the GIL while the calling thread wakes every
-// `tick_every` seconds (and once at the end) to look for Ctrl-C and call `tick` (progress). A
-// KeyboardInterrupt (or an exception from tick) sets `cancel`, which the work reads between its
+// Runs `work` on a thread of its own without the GIL while the calling thread wakes every 0.1 s
+// to look for Ctrl-C and, every `progress_every` seconds, calls `progress` (if set). A
+// KeyboardInterrupt (or an exception from progress) sets `cancel`, which the work reads between its
 // events (simulation/cancellation.hpp), and is returned once the work has ended: the caller
 // returns what finished and marks it interrupted (a KeyboardInterrupt; the package raises
 // granchain.Interrupted) or rethrows it. An exception from the work itself is rethrown.
 std::optional<py::error_already_set> run_interruptible(std::atomic<bool>& cancel, const std::function<void()>& work,
-                                                       const std::function<void()>& tick = {}, double tick_every = 0.1);
+                                                       const std::function<void()>& progress = {}, double progress_every = 0.5);
 
 // A driven-column result as the dict run() returns (bind_run.cpp); db "" when not stored.
 }  // namespace granchain::python

@@ -12,7 +12,7 @@
 namespace granchain::python {
 
 std::optional<py::error_already_set> run_interruptible(std::atomic<bool>& cancel, const std::function<void()>& work,
-                                                       const std::function<void()>& tick, double tick_every) {
+                                                       const std::function<void()>& progress, double progress_every) {
   std::mutex mu;
   std::condition_variable cv;
   bool done = false;
@@ -28,15 +28,20 @@ std::optional<py::error_already_set> run_interruptible(std::atomic<bool>& cancel
     cv.notify_all();
   });
   std::optional<py::error_already_set> stop;
+  auto last_progress = std::chrono::steady_clock::now();
   for (bool finished = false; !finished;) {
     {
       py::gil_scoped_release nogil;
       std::unique_lock lock(mu);
-      finished = cv.wait_for(lock, std::chrono::duration<double>(tick_every), [&] { return done; });
+      finished = cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return done; });
     }
     try {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      if (tick) tick();
+      const auto now = std::chrono::steady_clock::now();
+      if (progress && !finished && std::chrono::duration<double>(now - last_progress).count() >= progress_every) {
+        last_progress = now;
+        progress();
+      }
     } catch (py::error_already_set& e) {
       stop.emplace(std::move(e));
       cancel = true;

@@ -3,6 +3,7 @@
 // message (run and collapse name parameters by keyword: keyword_message); an unphysical simulation
 // granchain.UnphysicalStateError (a RuntimeError, the CLI's exit 3); a store that cannot be written
 // granchain.StoreError (an OSError, the CLI's exit 4).
+#include "analysis/estimate_format.hpp"
 #include "bindings.hpp"
 #include "config/input_error.hpp"
 #include "engines/engine.hpp"
@@ -19,6 +20,8 @@ PYBIND11_MODULE(_granchain, m) {
   m.attr("build_settings") = build_settings();
   // The provenance of every result the module returns or stores names the Python program.
   m.def("_set_invocation", &set_invocation_text, py::arg("command_line"));
+  // "12.345 ± 0.012" as the command line prints a value with its error (the results' reprs).
+  m.def("_format_with_error", &format_with_error, py::arg("value"), py::arg("error"));
 
   // The module's attributes keep the two classes alive; the translator needs only their pointers.
   static PyObject* unphysical = py::exception<UnphysicalStateError>(m, "UnphysicalStateError", PyExc_RuntimeError).ptr();

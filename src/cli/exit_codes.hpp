@@ -4,6 +4,8 @@
 // UnphysicalStateError, OutputError).
 #include <string>
 
+#include "cli/text_wrap.hpp"
+
 namespace granchain {
 
 enum ExitCode : int {
@@ -15,25 +17,13 @@ enum ExitCode : int {
 };
 
 // The end of every command's --help: its exit codes, `own` being those it returns besides 0 with
-// what each means for it, then the two every command shares (cli/interrupt_message.hpp).
-// Wrapped at 100 columns, as the footers are.
+// what each means for it, then the two every command shares (cli/interrupt_message.hpp); wrapped at
+// 100 columns, as the footers are.
 inline std::string exit_codes_help(const std::string& own) {
-  const std::string text = "Exit codes: 0 ok" + (own.empty() ? std::string() : ", " + own) +
-                           ", 130 interrupted by SIGINT (Ctrl-C), 143 by SIGTERM (a batch system's kill); an interrupted "
-                           "command prints one line saying what was kept.";
-  std::string out, line;
-  for (std::size_t start = 0; start < text.size();) {
-    std::size_t end = text.find(' ', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(start, end - start);
-    if (!line.empty() && line.size() + 1 + word.size() > 100) {
-      out += line + "\n";
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-    start = end + 1;
-  }
-  return out + line;
+  return wrap_words("Exit codes: 0 ok" + (own.empty() ? std::string() : ", " + own) +
+                        ", 130 interrupted by SIGINT (Ctrl-C), 143 by SIGTERM (a batch system's kill); an interrupted "
+                        "command prints one line saying what was kept.",
+                    100);
 }
 
 }  // namespace granchain

@@ -5,31 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cli/text_wrap.hpp"
 #include "simulation/run_verdicts.hpp"
 
 namespace granchain {
-
-namespace {
-
-// A sentence as warning lines of at most about 100 columns: "  warning: ..." then indented.
-std::string warning_lines(const std::string& sentence) {
-  std::string out = "  warning:", line;
-  std::size_t start = 0;
-  while (start < sentence.size()) {
-    std::size_t end = sentence.find(' ', start);
-    if (end == std::string::npos) end = sentence.size();
-    const std::string word = sentence.substr(start, end - start);
-    if (!line.empty() && line.size() + 1 + word.size() > 88) {
-      out += " " + line + "\n          ";
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-    start = end + 1;
-  }
-  return out + " " + line + "\n";
-}
-
-}  // namespace
 
 std::string run_summary(const RunResult& r, const std::string& stored) {
   const RunSpec& s = r.spec;
@@ -47,7 +26,7 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   out += fmt::format("  pair rate   = {}   particle-particle collisions per unit time\n", format_estimate(r.pp_rate));
   out += fmt::format("  in window: {} particle-particle collisions, {} floor hits; {} profile samples every {:.4g}\n",
                      r.particle_collisions, r.floor_hits, r.samples, r.sample_interval);
-  for (const std::string& w : run_warnings(r)) out += warning_lines(w);
+  for (const std::string& w : run_warnings(r)) out += wrap_words(w, 88, "  warning: ", std::string(11, ' ')) + "\n";
   out += "\n     i  <z_i>                 sigma_i               K_i\n";
   for (std::size_t i = 0; i < r.profiles.size(); ++i) {
     const ParticleProfile& q = r.profiles[i];

@@ -40,12 +40,13 @@ TraceSpec resolve_trace_spec(const std::map<std::string, RawValue>& raw) {
   std::map<std::string, RawValue> own;
   for (const auto& [name, value] : raw) (find_parameter(trace_window_parameters(), name) ? own : run_raw)[name] = value;
   const auto& table = trace_window_parameters();
-  const auto real = [&](const char* name) {
+  // The trace's own value of `name` as given, or its default, read as its type.
+  const auto value = [&](const char* name, auto read) {
     const Parameter& p = *find_parameter(table, name);
-    return read_real(p, own.count(name) ? own.at(name) : RawValue(p.fallback));
+    return read(p, own.count(name) ? own.at(name) : RawValue(p.fallback));
   };
-  const Parameter& setup_p = *find_parameter(table, "setup");
-  const std::string setup = own.count("setup") ? read_name(setup_p, own.at("setup")) : setup_p.fallback;
+  const auto real = [&](const char* name) { return value(name, read_real); };
+  const std::string setup = value("setup", read_name);
   if (setup != "driven" && setup != "free") throw InputError(fmt::format("--setup = '{}' is not a set-up; valid: driven, free", setup));
 
   const EngineInfo* named = run_raw.count("engine") ? find_engine(run_raw.at("engine").text()) : nullptr;
@@ -61,8 +62,7 @@ TraceSpec resolve_trace_spec(const std::map<std::string, RawValue>& raw) {
   spec.run = resolve_run_options(run_raw).spec;
   spec.free_space = setup == "free";
   spec.launch = {real("a"), real("v0"), real("dv0")};
-  const Parameter& rp = *find_parameter(table, "realization");
-  spec.realization = static_cast<int>(read_integer(rp, own.count("realization") ? own.at("realization") : RawValue(rp.fallback)));
+  spec.realization = static_cast<int>(value("realization", read_integer));
   const double from = real("from"), to = real("to"), dt = real("dt");
   spec.t_from = from;
   spec.t_to = to;

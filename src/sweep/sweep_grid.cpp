@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string_view>
 #include <tuple>
 
@@ -177,13 +178,9 @@ std::vector<SweepPoint> shard_points(const std::vector<SweepPoint>& points, int 
   return out;
 }
 
-}  // namespace granchain
-
-namespace granchain {
-
 std::vector<std::size_t> table_order(const std::vector<SweepPoint>& points) {
   std::vector<std::size_t> order(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
     const RunSpec& x = points[i].spec;
     const RunSpec& y = points[j].spec;

@@ -52,7 +52,7 @@ bool SweepRunner::fits_in_time_limit(double cost) const {
 
 std::optional<std::size_t> SweepRunner::next() {
   std::lock_guard lock(mutex_);
-  if (stop_ || stop_requested()) return std::nullopt;
+  if (stop_ || cancelled()) return std::nullopt;
   for (std::size_t j = scan_from_; j < todo_.size(); ++j) {
     if (handed_[j] || !fits_in_time_limit(points_[todo_[j]].cost)) continue;
     handed_[j] = 1;
@@ -61,11 +61,6 @@ std::optional<std::size_t> SweepRunner::next() {
     return todo_[j];
   }
   return std::nullopt;
-}
-
-void SweepRunner::request_stop() {
-  cancel_ = true;
-  stop_ = true;
 }
 
 std::size_t SweepRunner::not_started() const {
@@ -126,7 +121,7 @@ void SweepRunner::worker(int slot) {
     live_events_[slot] = 0;
     live_cost_[slot] = 0.0;
     ProgressCallback live = [this, slot, cost = point.cost](const RunProgress& rp) {
-      if (stop_requested()) throw RunCancelled{};
+      if (cancelled()) throw RunCancelled{};
       live_events_[slot] = rp.events;
       if (rp.t_total > 0) live_cost_[slot] = cost * std::min(rp.t / rp.t_total, 1.0);
     };
@@ -139,7 +134,7 @@ void SweepRunner::worker(int slot) {
     try {
       const RunResult result = run_driven_column(point.spec, live, point_progress_every_);
       record(*index, &result, "", clear_live);
-    } catch (const RunCancelled&) {  // request_stop(): abandoned, not recorded
+    } catch (const RunCancelled&) {  // watch(): abandoned, not recorded
       clear_live();
       return;
     } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point

@@ -74,13 +74,12 @@ class SweepRunner {
   // still run; the skipped ones are left for a later invocation (not_started()). A worker that
   // finds nothing that fits stops (time only runs out).
   void set_time_limit(double seconds) { time_limit_ = seconds; }
-  // Cancels the sweep from any thread: no point is handed out any more, and the points running
-  // are abandoned at their next progress report (set_point_progress_every), neither recorded nor
-  // passed to the sink; run() then returns. Points finished before are kept as usual.
-  void request_stop();
-  // The same, when `flag` (simulation/cancellation.hpp) is set by its owner; null: none.
-  void watch(const CancelFlag* flag) { external_cancel_ = flag; }
-  bool stop_requested() const { return cancel_.load() || cancel_requested(external_cancel_); }
+  // Cancelling: once `flag` (simulation/cancellation.hpp) is set, from any thread, no point is
+  // handed out any more and the points running are abandoned at their next progress report
+  // (set_point_progress_every), neither recorded nor passed to the sink; run() then returns.
+  // Points finished before are kept as usual. Null: not cancellable.
+  void watch(const CancelFlag* flag) { cancel_ = flag; }
+  bool cancelled() const { return cancel_requested(cancel_); }
 
   // Points of todo never handed out (after run(): those the time limit left).
   std::size_t not_started() const;
@@ -108,8 +107,7 @@ class SweepRunner {
   std::uint64_t finished_events_ = 0;
   std::exception_ptr sink_error_;
   std::atomic<bool> stop_{false};
-  std::atomic<bool> cancel_{false};
-  const CancelFlag* external_cancel_ = nullptr;
+  const CancelFlag* cancel_ = nullptr;
 
   std::unique_ptr<std::atomic<std::uint64_t>[]> live_events_;  // per local thread, of its running point
   std::unique_ptr<std::atomic<double>[]> live_cost_;           // per local thread: cost × fraction of its point done
