@@ -33,7 +33,8 @@ py::dict estimate_halves(const StationarityCheck& c) {
 }
 
 // The set-up and every stored parameter of the table (config/run_options.hpp) under its store
-// column's name; k is inf for the hard-sphere engine.
+// column's name; k is inf for the hard-sphere engine; None where the store keeps NULL (a
+// parameter that does not act: tc of a soft engine, the plate's under the thermal floor).
 py::dict spec_dict(const RunSpec& s) {
   py::dict p;
   p["setup"] = "driven_column";
@@ -43,7 +44,8 @@ py::dict spec_dict(const RunSpec& s) {
     const Parameter& q = *stored[i].parameter;
     const TypedValue& v = values[i].value;
     const py::str key(q.store_column);
-    if (const auto* t = std::get_if<std::string>(&v)) p[key] = *t;
+    if (stored[i].nullable && !values[i].acts) p[key] = py::none();
+    else if (const auto* t = std::get_if<std::string>(&v)) p[key] = *t;
     else if (const auto* n = std::get_if<long long>(&v)) p[key] = unsigned_integer(q) ? py::int_(static_cast<std::uint64_t>(*n)) : py::int_(*n);
     else p[key] = std::get<double>(v);
   }

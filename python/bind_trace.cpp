@@ -60,10 +60,10 @@ py::dict trace(const py::kwargs& kwargs) {
     const Event& e = tr.events[static_cast<std::size_t>(k)];
     et.mutable_at(k) = e.t;
     speed.mutable_at(k) = e.speed;
-    const bool floor = e.kind == EventKind::FloorHit;
+    const bool floor = e.kind == EventKind::FloorHit || e.kind == EventKind::FloorContact;
     ei.mutable_at(k) = floor ? 0 : e.i + 1;  // particles from 1 at the bottom, the floor as 0
     ej.mutable_at(k) = floor ? 1 : e.i + 2;
-    kind.append(e.kind == EventKind::ContactBegin ? "contact_begin" : e.kind == EventKind::ContactEnd ? "contact_end" : "floor_hit");
+    kind.append(event_kind_name(e.kind));
   }
   py::dict events;
   events["t"] = et;

@@ -47,7 +47,7 @@ TEST(Parameters, TypedValuesResolveAsTheirText) {
 // The tables say which parameters a sweep takes lists of, and every entry states its range and
 // default in its help.
 TEST(Parameters, TablesNameTheSweepAxesAndEveryRange) {
-  EXPECT_EQ(sweep_grid_parameters(), (std::vector<std::string>{"N", "e", "k", "T0", "T", "engine"}));
+  EXPECT_EQ(sweep_grid_parameters(), (std::vector<std::string>{"N", "e", "k", "T0", "drive", "A", "omega", "Gamma", "f", "T", "engine"}));
   std::set<std::string> names;
   for (const auto* table : {&run_parameters(), &collapse_parameters()})
     for (const Parameter& p : *table) {

@@ -89,7 +89,8 @@ class Record(dict):
 
 
 def _point(p, names):
-    return ", ".join(f"{n}={_short(p[n])}" for n in names if n in p)
+    """name=value for the names p holds, those that are None (a plate's A under the thermal floor) left out."""
+    return ", ".join(f"{n}={_short(p[n])}" for n in names if p.get(n) is not None)
 
 
 class RunResult(Record):
@@ -99,7 +100,7 @@ class RunResult(Record):
 
     def __repr__(self):
         p = self.get("parameters", {})
-        head = _point(p, ("N", "e", "k", "T0", "T", "engine", "seed"))
+        head = _point(p, ("N", "e", "k", "T0", "drive", "plate_A", "plate_omega", "T", "engine", "seed"))
         tail = f"n_coll = {_with_error(self['n_coll'], self.get('n_coll_err'))}"
         tail += ", stationary" if self.get("stationary") else ", NOT stationary"
         if self.get("warnings"):
@@ -181,8 +182,8 @@ class TraceResult(Record):
 
 
 class SweepResult(list):
-    """The points of a sweep() in the order of the command's table (engine, N, T0, k, T, e,
-    replica), each a RunResult; ``failed`` lists (key, reason) of points that turned unphysical,
+    """The points of a sweep() in the order of the command's table (engine, N, T0, drive, A, omega,
+    k, T, e, replica), each a RunResult; ``failed`` lists (key, reason) of points that turned unphysical,
     ``db`` the store (or None), ``stored_now`` and ``reused`` how many points were run and stored
     now and read back, ``interrupted`` whether Ctrl-C stopped it."""
 
@@ -226,7 +227,7 @@ class SweepResult(list):
 
     def __repr__(self):
         axes = []
-        for name in ("N", "e", "k", "T0", "T", "engine"):
+        for name in ("N", "e", "k", "T0", "drive", "plate_A", "plate_omega", "T", "engine"):
             values = sorted({r["parameters"][name] for r in self}, key=str)
             if len(values) > 1:
                 shown = ", ".join(_short(v) for v in values[:4]) + (", ..." if len(values) > 4 else "")

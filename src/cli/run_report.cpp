@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "cli/text_wrap.hpp"
 #include "simulation/run_verdicts.hpp"
@@ -18,6 +19,14 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   if (r.time_step > 0) out += fmt::format(" (dt = tau_c/{:g} = {:.4g})", s.engine.dt_factor, r.time_step);
   out += "\n";
   out += fmt::format("  N = {}, e = {:g}, k = {:g}, kT0 = {:g}   (m = {:g}, d = {:g}, g = {:g})\n", p.N, p.e, p.k, p.kT0, p.m, p.d, p.g);
+  if (s.drive.plate()) {
+    const double period = 2.0 * std::numbers::pi / s.drive.omega;
+    out += fmt::format("  drive: {} plate, A = {:.6g}, omega = {:.6g} (period {:.6g}", drive_name(s.drive.kind), s.drive.A,
+                       s.drive.omega, period);
+    if (s.drive.kind != DriveKind::Sawtooth)
+      out += fmt::format(", Gamma = {:.6g}", gamma_factor(s.drive.kind) * s.drive.A * s.drive.omega * s.drive.omega / p.g);
+    out += "), random phase\n";
+  }
   out += fmt::format("  D = {:.6g}, tau_c = {:.6g}; transient {:g}, measuring window T = {:g}, seed {}\n", r.law.D,
                      r.law.tau_c, s.transient, s.T, s.seed);
   out += "\n";

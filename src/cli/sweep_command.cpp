@@ -82,7 +82,7 @@ std::pair<int, int> parse_shard(const std::string& text) {
 Subcommand add_sweep_command(CLI::App& app) {
   auto impl_ = std::make_shared<SweepFlags>();
   CLI::App* sub_;
-  sub_ = app.add_subcommand("sweep", "Run a grid of driven-column runs (N, e, k, T0, T, engine, replica) into the results store.");
+  sub_ = app.add_subcommand("sweep", "Run a grid of driven-column runs (N, e, k, T0, drive, T, engine, replica) into the results store.");
   sub_->footer(
       "Grid parameters (N, e, k, T0, T, engine) take lists and ranges: 3,4,5  0.80:0.90:0.002 (first:last:step)\n"
       "1e5:1e10:x10 (first:last:xFACTOR); every other parameter takes one value, as in `granchain run`.\n"
@@ -306,17 +306,22 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
         fmt::print(stderr, "granchain: error: {}; the table of results cannot be shown, every finished point is stored\n", e.what());
         return world.broadcast(kExitStoreFailed);
       }
-      fmt::print("{:>6} {:>8} {:>10} {:>6} {:>8} {:>10} {:>4} {:>10} {:>9} {:>6}\n", "N", "e", "k", "T0", "T", "engine", "rep",
-                 "n_coll", "error", "run");
+      // Drive columns where a plate drives a point: its drive, A and omega.
+      const bool plates = std::any_of(points.begin(), points.end(), [](const SweepPoint& p) { return p.spec.drive.plate(); });
+      fmt::print("{:>6} {:>8} {:>10} {:>6}", "N", "e", "k", "T0");
+      if (plates) fmt::print(" {:>9} {:>10} {:>8}", "drive", "A", "omega");
+      fmt::print(" {:>8} {:>10} {:>4} {:>10} {:>9} {:>6}\n", "T", "engine", "rep", "n_coll", "error", "run");
       std::vector<const SweepPoint*> order;
       for (std::size_t i : table_order(points)) order.push_back(&points[i]);
       for (const SweepPoint* p : order) {
         const auto it = summaries.find(p->key);
         if (it == summaries.end()) continue;  // failed
         const RunSpec& s = p->spec;
-        fmt::print("{:>6} {:>8.6g} {:>10.3g} {:>6.4g} {:>8.6g} {:>10} {:>4} {:>10.5g} {:>9.2g} {:>6}\n", s.params.N, s.params.e,
-                   s.params.k, s.params.kT0, s.T, engine_name(s.engine.kind), p->replica, it->second.n_coll, it->second.n_coll_err,
-                   it->second.id);
+        fmt::print("{:>6} {:>8.6g} {:>10.3g} {:>6.4g}", s.params.N, s.params.e, s.params.k, s.params.kT0);
+        if (plates && s.drive.plate()) fmt::print(" {:>9} {:>10.4g} {:>8.4g}", drive_name(s.drive.kind), s.drive.A, s.drive.omega);
+        else if (plates) fmt::print(" {:>9} {:>10} {:>8}", drive_name(s.drive.kind), "", "");
+        fmt::print(" {:>8.6g} {:>10} {:>4} {:>10.5g} {:>9.2g} {:>6}\n", s.T, engine_name(s.engine.kind), p->replica, it->second.n_coll,
+                   it->second.n_coll_err, it->second.id);
       }
     }
     if (!impl.quiet)

@@ -9,56 +9,18 @@
 #include <numbers>
 #include <type_traits>
 
+#include "config/drive_options.hpp"
 #include "config/input_error.hpp"
+#include "config/run_definition.hpp"
 #include "engines/engine_registry.hpp"
 
 namespace granchain {
 
 namespace {
 
-// A parameter of the driven column: its entry, how a run's spec holds it (get, and set from a typed
-// value whose range is already checked), and how a raw value is read (apply; by default read as
-// the entry's type, then set).
-struct Definition {
-  Parameter info;
-  bool nullable = false;  // its store column may be NULL: where it does not act, and in runs stored before it
-  std::function<TypedValue(const RunSpec&)> get;
-  std::function<void(RunSpec&, const TypedValue&)> set;
-  std::function<void(RunOptions&, const Parameter&, const RawValue&)> apply;
-  // Where it acts, if not by its engine scope alone (acts()): a drive's amplitude only with that drive.
-  std::function<bool(const RunSpec&)> acts_in = {};
-};
-
-double as_real(const TypedValue& v) {
-  if (const auto* i = std::get_if<long long>(&v)) return static_cast<double>(*i);
-  if (const auto* x = std::get_if<double>(&v)) return *x;
-  throw InputError(fmt::format("'{}' is not a number", std::get<std::string>(v)));
-}
-
-long long as_integer(const TypedValue& v) {
-  if (const auto* i = std::get_if<long long>(&v)) return *i;
-  if (const auto* x = std::get_if<double>(&v)) return static_cast<long long>(*x);
-  throw InputError(fmt::format("'{}' is not a number", std::get<std::string>(v)));
-}
-
-// A real (integer) parameter held by `field` of the spec: `field(spec)` is a reference to it.
-template <class Field>
-Definition real(Parameter p, RunIdentity part, Field field) {
-  p.type = ParameterType::Real;
-  p.identity = part;
-  return {std::move(p), false, [field](const RunSpec& s) -> TypedValue { return field(s); },
-          [field](RunSpec& s, const TypedValue& v) { field(s) = as_real(v); }, {}};
-}
-
-template <class Field>
-Definition integer(Parameter p, RunIdentity part, Field field) {
-  p.type = ParameterType::Integer;
-  p.identity = part;
-  return {std::move(p), false,
-          [field](const RunSpec& s) -> TypedValue { return static_cast<long long>(field(s)); },
-          [field](RunSpec& s, const TypedValue& v) { field(s) = static_cast<std::remove_cvref_t<decltype(field(s))>>(as_integer(v)); },
-          {}};
-}
+using run_table::Definition;
+using run_table::integer;
+using run_table::real;
 
 // The driven column's parameters (Sec. II of the paper; units m = d = g = 1 unless set). An entry
 // with a store column is part of a run's identity: its point key and its row in the store follow
@@ -82,9 +44,10 @@ const std::vector<Definition>& definitions() {
                       shown(def.spec.params.k), kUseDriven | kUseTrace, EngineScope::Soft, true, "k", [](double x) { return x > 0; },
                       "the hard-sphere engine has k = infinity"},
                      I::Physics, [](auto& s) -> auto& { return s.params.k; }));
-    d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0", "T0 > 0", shown(def.spec.params.kT0), kUseDriven | kUseTrace, EngineScope::Any, true,
+    d.push_back(real({"T0", {}, "m g d", "temperature of the thermal floor, k_B T0 (and of the initial velocities)", "T0 > 0", shown(def.spec.params.kT0), kUseDriven | kUseTrace, EngineScope::Any, true,
                       "T0", [](double x) { return x > 0; }},
                      I::Physics, [](auto& s) -> auto& { return s.params.kT0; }));
+    run_table::add_drive_definitions(d);
     // T and transient: their defaults depend on N (resolve_run_options).
     d.push_back(real({"T", {}, "sqrt(d / g)", "measuring time (window after the transient)", "T > 0",
                       "1e4 for N < 50, 1e3 for N >= 50 (the paper's)", kUseDriven, EngineScope::Any, true, "T",
@@ -326,6 +289,7 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   if (!raw.count("transient")) o.spec.transient = o.spec.T / 10.0;
   check_contact_time(o, raw);
   check_height_scale(o, raw);
+  run_table::resolve_drive(o, raw);
   // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
   if (!(o.spec.transient + o.spec.T <= 1e15))
     value_out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",

@@ -10,7 +10,14 @@ namespace granchain {
 
 namespace {
 
+// An engine whose entry says it does not run the plates never gets one (the options refuse it first).
+void refuse_plate(const FloorDrive* f, const char* name) {
+  if (f != nullptr && f->plate() != nullptr)
+    throw std::invalid_argument(std::string("the ") + name + " engine does not run the vibrating plates");
+}
+
 std::unique_ptr<Engine> make_exact(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
+  refuse_plate(f, "exact");
   return std::make_unique<ExactEngine>(p, s, f, ExactOptions{.audit = c.audit});
 }
 std::unique_ptr<Engine> make_reference(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
@@ -20,18 +27,19 @@ std::unique_ptr<Engine> make_reference_located(const EngineChoice& c, const Chai
   return std::make_unique<RungeKuttaEngine>(p, s, f, RungeKuttaOptions{c.dt_factor, true});
 }
 std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
+  refuse_plate(f, "hard");
   return std::make_unique<HardSphereEngine>(p, s, f, c.hard);
 }
 
 }  // namespace
 
 const std::vector<EngineInfo>& engines() {
-  //                                   kind                         name                 hard   stepped fine   audit
-  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, make_exact},
-                                           {EngineKind::Reference, "reference", false, true, false, false, make_reference},
-                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false,
+  //                                        kind                     name          hard   stepped fine  audit  plates
+  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, false, make_exact},
+                                           {EngineKind::Reference, "reference", false, true, false, false, true, make_reference},
+                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, true,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, false, make_hard}};
   return all;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // What an engine is, written once: its name (on the command line, in stores and point keys),
 // whether it treats the spheres as hard, whether it steps in time (dt = tau_c / dt_factor, then part
-// of a run's identity), whether its clock is a FineTime, whether it has an audit, and how to make
-// one. The layers ask this registry (by EngineKind) instead of comparing names; names appear only
+// of a run's identity), whether its clock is a FineTime, whether it has an audit, whether it runs
+// the vibrating plates, and how to make one. The layers ask this registry (by EngineKind) instead of comparing names; names appear only
 // where text is read or written.
 #include <memory>
 #include <string>
@@ -34,6 +34,7 @@ struct EngineInfo {
   bool time_stepped;         // fixed steps dt = tau_c / dt_factor: dt_factor is part of a run's identity
   bool fine_clock;           // FineTime clock, resolving 2^-53 ulp(t) at time t; otherwise ulp(t)
   bool has_audit;            // --audit checks it
+  bool plate_drives;         // runs the vibrating plates (model/plate_motion.hpp), not only a floor at rest
   std::unique_ptr<Engine> (*make)(const EngineChoice&, const ChainParameters&, const ChainState&, FloorDrive*);
 };
 

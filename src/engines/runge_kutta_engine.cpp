@@ -31,12 +31,21 @@ RungeKuttaEngine::RungeKuttaEngine(const ChainParameters& p, const ChainState& i
   k_over_m_ = law.k_over_m;
   D_ = law.D;
   dt_ = law.tau_c / options.dt_factor;
+  plate_ = floor_ != nullptr ? floor_->plate() : nullptr;
+  plate_k_ = 2.0 * k_over_m_;  // the mirror image's contact (plate_motion.hpp)
+  plate_D_ = 2.0 * D_;
   for (int i = 0; i + 1 < n_; ++i) touching_[i] = (d_ - (state_.z[i + 1] - state_.z[i])) > 0.0;
+  if (plate_ != nullptr) on_plate_ = plate_overlap(state_.t, state_.z[0]) > 0.0;
   check_state(state_.t);
 }
 
-void RungeKuttaEngine::accelerations(const double* z, const double* v, double* a) const {
+void RungeKuttaEngine::accelerations(double t, const double* z, const double* v, double* a) const {
   for (int i = 0; i < n_; ++i) a[i] = -g_;
+  if (plate_ != nullptr) {
+    // The plate pushes particle 1 up while it overlaps: (2k/m) x_w + 2D x_w' (plate_motion.hpp).
+    const double xw = plate_overlap(t, z[0]);
+    if (xw > 0.0) a[0] += plate_k_ * xw + plate_D_ * (plate_->v(t) - v[0]);
+  }
   for (int i = 0; i + 1 < n_; ++i) {
     const double x = d_ - (z[i + 1] - z[i]);  // overlap x_{i,i+1}
     if (x > 0.0) {
@@ -55,6 +64,10 @@ void RungeKuttaEngine::check_state(double t) const {
                                  fmt::format("non-finite state of particle {} at t = {:.10g}", i + 1, t));
     }
   }
+  if (plate_ != nullptr && plate_overlap(t, state_.z[0]) >= d_) {
+    throw UnphysicalStateError(t, 1, 1, fmt::format("particle 1 passed through the plate at t = {:.10g} (overlap {:.6g} d)", t,
+                                                    plate_overlap(t, state_.z[0]) / d_));
+  }
   for (int i = 0; i + 1 < n_; ++i) {
     const double x = d_ - (state_.z[i + 1] - state_.z[i]);
     if (x >= d_) {
@@ -66,17 +79,17 @@ void RungeKuttaEngine::check_state(double t) const {
   }
 }
 
-void RungeKuttaEngine::integrate(double h) {
+void RungeKuttaEngine::integrate(double t, double h) {
   double* z = state_.z.data();
   double* v = state_.v.data();
-  // Midpoint rule: y(t+h) = y + h f(y + h/2 f(y)).
-  accelerations(z, v, a_.data());
+  // Midpoint rule: y(t+h) = y + h f(t + h/2, y + h/2 f(t, y)).
+  accelerations(t, z, v, a_.data());
   for (int i = 0; i < n_; ++i) {
     z_old_[i] = z[i];
     zm_[i] = z[i] + 0.5 * h * v[i];
     vm_[i] = v[i] + 0.5 * h * a_[i];
   }
-  accelerations(zm_.data(), vm_.data(), am_.data());
+  accelerations(t + 0.5 * h, zm_.data(), vm_.data(), am_.data());
   for (int i = 0; i < n_; ++i) {
     z[i] += h * vm_[i];
     v[i] += h * am_[i];
@@ -84,9 +97,13 @@ void RungeKuttaEngine::integrate(double h) {
   ++counters_.steps;
 }
 
-bool RungeKuttaEngine::switches() const {
+bool RungeKuttaEngine::switches(double t) const {
   const double* z = state_.z.data();
-  if (floor_ != nullptr && z[0] < floor_z_) return true;
+  if (plate_ != nullptr) {
+    if ((plate_overlap(t, z[0]) > 0.0) != on_plate_) return true;
+  } else if (floor_ != nullptr && z[0] < floor_z_) {
+    return true;
+  }
   for (int i = 0; i + 1 < n_; ++i) {
     if ((d_ - (z[i + 1] - z[i]) > 0.0) != static_cast<bool>(touching_[i])) return true;
   }
@@ -95,10 +112,22 @@ bool RungeKuttaEngine::switches() const {
 
 void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
   if (!locate_) {
-    integrate(h);
+    integrate(t0, h);
     report_switches(t0, h, sink);
     return;
   }
+  // A piecewise plate motion is smooth only between its switching instants: end steps there.
+  double done = 0.0;
+  if (plate_ != nullptr) {
+    for (double ts = plate_->next_switch(t0); ts < t0 + h; ts = plate_->next_switch(ts)) {
+      if (ts - t0 > done) located_step(t0 + done, ts - t0 - done, sink);
+      done = ts - t0;
+    }
+  }
+  located_step(t0 + done, h - done, sink);
+}
+
+void RungeKuttaEngine::located_step(double t0, double h, EventSink& sink) {
   // Cut the step at the first switch: bisect on the size s of a step from the saved state for
   // the smallest s after which a contact has switched or particle 1 is below the floor.
   double done = 0.0;
@@ -106,8 +135,8 @@ void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
     const double rest = h - done;
     z_save_ = state_.z;
     v_save_ = state_.v;
-    integrate(rest);
-    if (!switches()) {
+    integrate(t0 + done, rest);
+    if (!switches(t0 + done + rest)) {
       report_switches(t0 + done, rest, sink);
       return;
     }
@@ -117,12 +146,12 @@ void RungeKuttaEngine::step(double t0, double h, EventSink& sink) {
       if (mid <= lo || mid >= hi) break;
       state_.z = z_save_;
       state_.v = v_save_;
-      integrate(mid);
-      (switches() ? hi : lo) = mid;
+      integrate(t0 + done, mid);
+      (switches(t0 + done + mid) ? hi : lo) = mid;
     }
     state_.z = z_save_;
     state_.v = v_save_;
-    integrate(hi);
+    integrate(t0 + done, hi);
     report_switches(t0 + done, hi, sink);
     done += hi;
   }
@@ -138,7 +167,19 @@ void RungeKuttaEngine::report_switches(double t0, double h, EventSink& sink) {
   // Thermal floor: particle 1 crossing z = d/2 is sent back up with a fresh floor speed. The hit
   // time is interpolated linearly inside the step, and the particle flies freely (under gravity)
   // for the rest of it.
-  if (floor_ != nullptr && z[0] < floor_z_) {
+  if (plate_ != nullptr) {
+    // The plate's contact begins or ends where its overlap x_w changes sign, interpolated linearly
+    // in the step; its end is the floor hit (one collision, as the thermal floor's).
+    const double xw = plate_overlap(t0 + h, z[0]);
+    if ((xw > 0.0) != on_plate_) {
+      const double xo = plate_overlap(t0, z_old_[0]);
+      const double frac = xo != xw ? std::clamp(xo / (xo - xw), 0.0, 1.0) : 1.0;
+      const double speed = std::abs(v[0] - plate_->v(t0 + h));
+      on_plate_ = xw > 0.0;
+      pending_.push_back({on_plate_ ? EventKind::FloorContact : EventKind::FloorHit, t0 + frac * h, 0, speed});
+      if (!on_plate_) ++counters_.floor_hits;
+    }
+  } else if (floor_ != nullptr && z[0] < floor_z_) {
     const double zo = z_old_[0];
     const double frac = zo > floor_z_ ? std::clamp((zo - floor_z_) / (zo - z[0]), 0.0, 1.0) : 0.0;
     const double r = (1.0 - frac) * h;
@@ -152,6 +193,7 @@ void RungeKuttaEngine::report_switches(double t0, double h, EventSink& sink) {
   double sum = 0.0;
   for (int i = 0; i < n_; ++i) sum += z[i] + v[i];
   bool bad = !std::isfinite(sum);
+  bad = bad || (plate_ != nullptr && plate_overlap(t0 + h, z[0]) >= d_);
   for (int i = 0; i + 1 < n_; ++i) {
     const double x = d_ - (z[i + 1] - z[i]);
     const bool now = x > 0.0;

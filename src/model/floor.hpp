@@ -6,16 +6,21 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/plate_motion.hpp"
 #include "model/random.hpp"
 
 namespace granchain {
 
-// What the floor does to particle 1 when it arrives; engines own none of the randomness.
+// What drives the column from below; engines own none of the randomness. Either a floor at z = 0
+// that particle 1 bounces off at once (bounce), or a vibrating plate (plate() not null) that it
+// touches with the contact law of plate_motion.hpp.
 class FloorDrive {
  public:
   virtual ~FloorDrive() = default;
   // Upward speed of particle 1 leaving the floor, given its downward speed on arrival.
   virtual double bounce(double incoming_speed) = 0;
+  // The plate's motion, or nullptr for a floor at rest at z = 0.
+  virtual const PlateMotion* plate() const { return nullptr; }
 };
 
 // Flux-weighted Maxwell distribution p(v) = (m v / kT0) exp(-m v^2 / (2 kT0)), v > 0
@@ -55,6 +60,19 @@ class Wall final : public FloorDrive {
 
  private:
   double r_;
+};
+
+// A vibrating plate (plate_motion.hpp). bounce() is the hard-sphere limit of its contact: speeds
+// relative to the plate, the outgoing one e times the incoming one.
+class VibratingPlate final : public FloorDrive {
+ public:
+  VibratingPlate(const PlateMotion& motion, double restitution) : motion_(motion), e_(restitution) {}
+  double bounce(double incoming_relative_speed) override { return e_ * incoming_relative_speed; }
+  const PlateMotion* plate() const override { return &motion_; }
+
+ private:
+  PlateMotion motion_;
+  double e_;
 };
 
 // CDF of the thermal floor's speed distribution, for tests and analysis.

@@ -8,7 +8,7 @@
 namespace granchain {
 
 // Independent streams drawn from one user seed.
-enum class RandomStream : std::uint64_t { InitialState = 1, Floor = 2 };
+enum class RandomStream : std::uint64_t { InitialState = 1, Floor = 2, PlatePhase = 3 };
 
 // SplitMix64 finaliser of (base, stream): decorrelated 64-bit seeds for separate streams.
 std::uint64_t derive_seed(std::uint64_t base, std::uint64_t stream);

@@ -22,6 +22,7 @@ void CollisionCounter::on_event(const Event& event) {
       ++floor_;
       break;
     case EventKind::ContactBegin:
+    case EventKind::FloorContact:  // counted when it ends (FloorHit)
       break;
   }
 }

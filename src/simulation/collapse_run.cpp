@@ -57,6 +57,8 @@ class CollapseObserver final : public EventSink {
         if (keep_) records.push_back({realization_, outcome.n_tot(), ev.t, ev.t, 0, ev.speed / wall_r_, ev.speed});
         if (open_ == 0) request_stop();
         break;
+      case EventKind::FloorContact:  // no plate in free space or on the wall
+        break;
     }
   }
   int open_contacts() const { return open_; }

@@ -32,10 +32,9 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.spec = spec;
   r.law = contact_law(spec.params);
 
-  ThermalFloor floor(spec.params.kT0, spec.params.m,
-                     derive_seed(spec.seed, static_cast<std::uint64_t>(RandomStream::Floor)));
-  const ChainState initial = driven_column_initial_state(spec.params, spec.seed);
-  auto engine = make_engine(spec.engine, spec.params, initial, &floor);
+  const auto floor = column_drive(spec.params, spec.drive, spec.seed);
+  const ChainState initial = driven_column_initial_state(spec.params, spec.seed, spec.drive);
+  auto engine = make_engine(spec.engine, spec.params, initial, floor.get());
   r.time_step = engine->time_quantum();
 
   // Samples at t0 + j*dt_s, j = 1..n; dt_s a whole number of engine steps so that a time-stepped

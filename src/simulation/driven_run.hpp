@@ -9,12 +9,14 @@
 #include "analysis/blocking.hpp"
 #include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
+#include "model/plate_motion.hpp"
 #include "observables/profile_sampler.hpp"
 
 namespace granchain {
 
 struct RunSpec {
   ChainParameters params;
+  DriveSpec drive;                // thermal floor (the paper's) or a vibrating plate
   EngineChoice engine;
   double T = 1e4;                 // measuring time
   double transient = 1e3;         // discarded time before the window

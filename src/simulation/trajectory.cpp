@@ -34,7 +34,7 @@ class WindowEvents final : public EventSink {
 
 Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel) {
   ChainParameters p = spec.run.params;
-  std::unique_ptr<ThermalFloor> floor;
+  std::unique_ptr<FloorDrive> floor;
   ChainState initial;
   if (spec.free_space) {
     p.g = 0.0;
@@ -45,10 +45,11 @@ Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel) {
     initial = collapse_initial_state(c, spec.realization);
   } else {
     // As run_driven_column: the same streams from the same seed.
-    floor = std::make_unique<ThermalFloor>(p.kT0, p.m, derive_seed(spec.run.seed, static_cast<std::uint64_t>(RandomStream::Floor)));
-    initial = driven_column_initial_state(p, spec.run.seed);
+    floor = column_drive(p, spec.run.drive, spec.run.seed);
+    initial = driven_column_initial_state(p, spec.run.seed, spec.run.drive);
   }
   auto engine = make_engine(spec.run.engine, p, initial, floor.get());
+  const PlateMotion* plate = floor ? floor->plate() : nullptr;
   WindowEvents sink(spec.t_from, cancel);
   Trajectory tr;
   const auto samples = static_cast<std::int64_t>(std::floor((spec.t_to - spec.t_from) / spec.dt + 1e-9));
@@ -63,6 +64,7 @@ Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel) {
     }
     tr.t.push_back(t);
     tr.z.push_back(engine->state().z);
+    if (plate) tr.plate.push_back(plate->z(t));
   }
   tr.events = std::move(sink.events);
   return tr;
@@ -72,10 +74,12 @@ std::string samples_csv(const Trajectory& tr) {
   std::string csv = "t";
   const std::size_t N = tr.z.empty() ? 0 : tr.z.front().size();
   for (std::size_t i = 1; i <= N; ++i) csv += fmt::format(",z{}", i);
-  csv += "\n";
+  const bool plate = !tr.plate.empty();
+  csv += plate ? ",z_plate\n" : "\n";
   for (std::size_t s = 0; s < tr.t.size(); ++s) {
     csv += fmt::format("{:.17g}", tr.t[s]);
     for (double z : tr.z[s]) csv += fmt::format(",{:.17g}", z);
+    if (plate) csv += fmt::format(",{:.17g}", tr.plate[s]);
     csv += "\n";
   }
   return csv;
@@ -84,9 +88,8 @@ std::string samples_csv(const Trajectory& tr) {
 std::string events_csv(const Trajectory& tr) {
   std::string ev = "t,kind,i,j,speed\n";
   for (const Event& e : tr.events) {
-    const char* kind = e.kind == EventKind::ContactBegin ? "contact_begin" : e.kind == EventKind::ContactEnd ? "contact_end" : "floor_hit";
-    ev += fmt::format("{:.17g},{},{},{},{:.17g}\n", e.t, kind, e.kind == EventKind::FloorHit ? 0 : e.i + 1,
-                      e.kind == EventKind::FloorHit ? 1 : e.i + 2, e.speed);
+    const bool floor = e.kind == EventKind::FloorHit || e.kind == EventKind::FloorContact;
+    ev += fmt::format("{:.17g},{},{},{},{:.17g}\n", e.t, event_kind_name(e.kind), floor ? 0 : e.i + 1, floor ? 1 : e.i + 2, e.speed);
   }
   return ev;
 }

@@ -23,7 +23,8 @@ struct TraceSpec {
 struct Trajectory {
   std::vector<double> t;                // sample times
   std::vector<std::vector<double>> z;   // z[s][i]: height of particle i + 1 at t[s]
-  std::vector<Event> events;            // contact begins and ends, floor hits in [t_from, t_to]
+  std::vector<double> plate;            // plate[s]: height of a vibrating plate's surface at t[s] (empty: thermal floor)
+  std::vector<Event> events;            // contact begins and ends, floor hits (and plate contacts) in [t_from, t_to]
   bool interrupted = false;             // cancelled: the samples and events up to t.back() only
 };
 
@@ -31,8 +32,8 @@ struct Trajectory {
 // (simulation/cancellation.hpp): when set, recording stops and what was recorded is returned.
 Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel = nullptr);
 
-// As CSV: the samples (t, z1, ..., zN; 17 significant digits) and the events (t, kind, i, j, speed;
-// kind contact_begin, contact_end or floor_hit, particles numbered from 1, the floor as 0).
+// As CSV: the samples (t, z1, ..., zN and z_plate above a plate; 17 significant digits) and the
+// events (t, kind, i, j, speed; kind as event_kind_name, particles numbered from 1, the floor as 0).
 std::string samples_csv(const Trajectory& tr);
 std::string events_csv(const Trajectory& tr);
 

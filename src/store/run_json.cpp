@@ -17,7 +17,9 @@ json to_json(const Estimate& e) {
 }
 
 // The set-up and every stored parameter of the table (config/run_options.hpp), under its store
-// column's name; k is null for hard spheres (JSON has no infinity).
+// column's name; k is null for hard spheres (JSON has no infinity), and so is a parameter that does
+// not act where the store keeps NULL for it (tc of a soft engine; the drive and the plate's A and
+// omega under the thermal floor).
 json run_spec_to_json(const RunSpec& s) {
   json j{{"setup", "driven_column"}};
   const auto& stored = stored_run_parameters();
@@ -25,7 +27,8 @@ json run_spec_to_json(const RunSpec& s) {
   for (std::size_t i = 0; i < stored.size(); ++i) {
     const Parameter& p = *stored[i].parameter;
     const TypedValue& v = values[i].value;
-    if (const auto* t = std::get_if<std::string>(&v)) j[p.store_column] = *t;
+    if (stored[i].nullable && !values[i].acts) j[p.store_column] = nullptr;  // NULL in the store too: tc of a soft engine
+    else if (const auto* t = std::get_if<std::string>(&v)) j[p.store_column] = *t;
     else if (const auto* n = std::get_if<long long>(&v)) j[p.store_column] = unsigned_integer(p) ? json(static_cast<std::uint64_t>(*n)) : json(*n);
     else j[p.store_column] = std::get<double>(v);
   }

@@ -185,8 +185,8 @@ std::vector<std::size_t> table_order(const std::vector<SweepPoint>& points) {
     const RunSpec& x = points[i].spec;
     const RunSpec& y = points[j].spec;
     const std::string_view xe = engine_name(x.engine.kind), ye = engine_name(y.engine.kind);  // by name, as printed
-    return std::tie(xe, x.params.N, x.params.kT0, x.params.k, x.T, x.params.e, points[i].replica) <
-           std::tie(ye, y.params.N, y.params.kT0, y.params.k, y.T, y.params.e, points[j].replica);
+    return std::tie(xe, x.params.N, x.params.kT0, x.drive.kind, x.drive.A, x.drive.omega, x.params.k, x.T, x.params.e, points[i].replica) <
+           std::tie(ye, y.params.N, y.params.kT0, y.drive.kind, y.drive.A, y.drive.omega, y.params.k, y.T, y.params.e, points[j].replica);
   });
   return order;
 }

@@ -45,8 +45,8 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def);
 // Indices of the points whose keys are not among `stored`, in the order of `points`.
 std::vector<std::size_t> points_to_run(const std::vector<SweepPoint>& points, const std::unordered_set<std::string>& stored);
 
-// Indices of points in the order a table of results lists them: by engine name, N, k_B T0, k, T,
-// e and replica.
+// Indices of points in the order a table of results lists them: by engine name, N, k_B T0, drive,
+// A, omega, k, T, e and replica.
 std::vector<std::size_t> table_order(const std::vector<SweepPoint>& points);
 
 // Job-array share i of n (1 <= i <= n): points j (in build order) with j mod n = i - 1, so each
