@@ -89,6 +89,21 @@ const std::vector<BadInputRow> kRows = {
     {"run --engine hard --tc 1e-12 --T 1 --db store.db", 2, {"--tc = 1e-12", "tc >= 1e-09"}, kAll},
     {"sweep --engine hard --tc 1e-12 --T 1 --dry-run", 2, {"--tc"}, kAll},
     {"run --engine hard --tc 1e-9 --N 3 --T 1 --no-db", 0, {}, kAll, {"engine hard"}},
+    // Drives: the plate's parameters belong to a plate, each given once, the sawtooth has no Gamma,
+    // a plate needs its amplitude and frequency, its period at least 10 tau_c, an engine that runs it.
+    {"run --drive wobble --A 1 --omega 1 --engine reference --T 1 --db store.db", 2, {"--drive = 'wobble' is not a drive", "sine, sawtooth, quadratic"}, kAll},
+    {"run --A 0.1 --T 1 --db store.db", 2, {"--A = 0.1 sets a vibrating plate", "--drive is thermal"}, kAll},
+    {"sweep --Gamma 2 --T 1 --dry-run", 2, {"--Gamma = 2", "sets a vibrating plate"}, kAll},
+    {"run --drive sine --A 0.1 --omega 2 --T 1 --db store.db", 2, {"--drive = 'sine' is not run by the exact engine", "reference, reference-located"}, kAll},
+    {"run --drive sine --A 0.1 --Gamma 2 --omega 2 --engine reference --T 1 --db store.db", 2, {"--Gamma = 2", "one of --A, --Gamma"}, kAll},
+    {"run --drive sine --A 0.1 --omega 2 --f 0.3 --engine reference --T 1 --db store.db", 2, {"--f = 0.3", "one of --omega, --f"}, kAll},
+    {"run --drive sawtooth --Gamma 2 --omega 2 --engine reference --T 1 --db store.db", 2, {"--Gamma = 2", "sawtooth", "--A > 0"}, kAll},
+    {"run --drive quadratic --Gamma 2 --engine reference --T 1 --db store.db", 2, {"needs the plate's frequency", "--omega > 0 or --f > 0"}, kAll},
+    {"run --drive sine --omega 2 --engine reference --T 1 --db store.db", 2, {"needs the plate's amplitude", "--A > 0 or --Gamma > 0"}, kAll},
+    {"run --drive sine --A -1 --omega 2 --engine reference --T 1 --db store.db", 2, {"--A = -1 is out of range", "A > 0"}, kAll},
+    {"run --drive sine --A 0.1 --omega 1e4 --engine reference --T 1 --db store.db", 2, {"--omega = 1e4 is out of range", "10 contact times"}, kAll},
+    {"run --drive sine --A 1e12 --omega 1 --engine reference --T 1 --db store.db", 2, {"--A = 1e12 is out of range", "height scale"}, kAll},
+    {"run --drive sine --Gamma 2 --f 0.5 --N 2 --engine reference --T 1 --no-db", 0, {}, kAll, {"drive: sine plate"}},
 
     // k, m, T, T0, g, d: a contact must last 1e6 clock resolutions, heights must resolve d.
     {"run --k 1e300", 2, {"--k = 1e300", "k <= 1.21e+44", "tau_c", "exact engine's clock"}, kAll},

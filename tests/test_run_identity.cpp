@@ -1,6 +1,7 @@
 // A run's identity follows from the parameter table (config/run_options.cpp): the point key, the
 // store's parameter columns and the typed rows read back are all the table's entries, so a
 // parameter added to the table is keyed, stored and read without another list to keep.
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -50,9 +51,10 @@ std::string sql_type(ParameterType t) {
   return t == ParameterType::Integer ? "INTEGER" : t == ParameterType::Name ? "TEXT" : "REAL";
 }
 
-RunResult small_run(EngineKind engine) {
+RunResult small_run(EngineKind engine, DriveSpec drive = {}) {
   RunSpec s;
   s.engine.kind = engine;
+  s.drive = drive;
   s.params.N = 4;
   s.params.k = engine == EngineKind::Hard ? std::numeric_limits<double>::infinity() : 1e4;
   s.params.e = 0.8;
@@ -82,6 +84,10 @@ TEST(RunIdentity, ThePointKeyIsTheTableInTheIdentitysOrder) {
   s.engine.kind = EngineKind::Reference;  // a time-stepped engine: dt_factor acts
   s.engine.dt_factor = 200;
   EXPECT_EQ(trajectory_key(s), "driven_column engine=reference N=25 e=0.88 k=100000000 T0=1 m=1 d=1 g=1 dt_factor=200 seed=7");
+  s.drive = {DriveKind::Sine, 0.125, 3.0};  // a plate: the drive and its A and omega act, among the physics
+  EXPECT_EQ(trajectory_key(s), "driven_column engine=reference N=25 e=0.88 k=100000000 T0=1 drive=sine plate_A=0.125 plate_omega=3 "
+                               "m=1 d=1 g=1 dt_factor=200 seed=7");
+  s.drive = {};
   s.engine.kind = EngineKind::Hard;  // the hard engine: k infinite, tc acts, dt_factor does not
   s.params.k = std::numeric_limits<double>::infinity();
   s.engine.hard.tc = 0.001;
@@ -125,10 +131,21 @@ TEST(RunIdentity, TypedRowsReadBackTheSpecAndItsKey) {
       store.insert_run(r);
       keys[e.kind] = point_key(r.spec);
     }
+    store.insert_run(small_run(EngineKind::ReferenceLocated, {DriveKind::Quadratic, 0.0625, 2.5}));
   }
-  const std::vector<StoredRun> rows = read_runs(path, ExportSelection{});
-  ASSERT_EQ(rows.size(), engines().size());
+  std::vector<StoredRun> rows = read_runs(path, ExportSelection{});
+  ASSERT_EQ(rows.size(), engines().size() + 1);
+  // The plate's run: its drive read back (and its key holds it), the others' thermal floor.
+  const auto plate = std::find_if(rows.begin(), rows.end(), [](const StoredRun& r) { return r.spec.drive.plate(); });
+  ASSERT_NE(plate, rows.end());
+  EXPECT_EQ(plate->spec.drive.kind, DriveKind::Quadratic);
+  EXPECT_EQ(plate->spec.drive.A, 0.0625);
+  EXPECT_EQ(plate->spec.drive.omega, 2.5);
+  EXPECT_NE(plate->point_key.find("drive=quadratic plate_A=0.0625 plate_omega=2.5"), std::string::npos);
+  EXPECT_EQ(point_key(plate->spec), plate->point_key);
+  rows.erase(plate);
   for (const StoredRun& row : rows) {
+    EXPECT_FALSE(row.spec.drive.plate());
     EXPECT_EQ(row.point_key, keys.at(row.spec.engine.kind));
     EXPECT_EQ(point_key(row.spec), row.point_key);
     EXPECT_EQ(row.spec.seed, 0xfedcba9876543210ULL);
