@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "engines/engine_registry.hpp"
 #include "engines/runge_kutta_engine.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
@@ -88,13 +89,16 @@ struct Bounces {
   ChainState last;
 };
 
-Bounces bounce(const PlateMotion& motion, double e, double k, double z0, double v0, double t_end) {
-  const ChainParameters p{.N = 1, .k = k, .e = e};
+Bounces bounce(const PlateMotion& motion, double e, double k, double z0, double v0, double t_end,
+               EngineKind kind = EngineKind::ReferenceLocated) {
+  ChainParameters p{.N = 1, .k = k, .e = e};
+  if (engine_info(kind).hard_spheres) p.k = INFINITY;
   VibratingPlate plate(motion, e);
   ChainState s;
   s.z = {z0};
   s.v = {v0};
-  RungeKuttaEngine engine(p, s, &plate, {.dt_factor = 100.0, .locate_switches = true});
+  const auto engine_ptr = make_engine(EngineChoice{.kind = kind}, p, s, &plate);
+  Engine& engine = *engine_ptr;
   test_support::EventRecorder rec;
   engine.advance_to(t_end, rec);
   Bounces b;
@@ -182,7 +186,10 @@ TEST(PlateDrives, ASphereAtRestStaysBelowGammaOneAndLeavesAbove) {
 // Gamma+ = sqrt([pi (1 - r) / (1 + r)]^2 + [2 (1 + r^2) / (1 + r)^2]^2), impacting where
 // cos theta* = pi (1 - r) / ((1 + r) Gamma), sin theta* > 0 (Holmes, J. Sound Vib. 84, 173 (1982),
 // the exact impact map). Just above Gamma+ the orbit doubles its period: the flight times alternate.
-TEST(PlateDrives, BouncingBallFindsThePeriodOneOrbitAndItsPeriodDoubling) {
+class BouncingBall : public ::testing::TestWithParam<EngineKind> {};
+
+TEST_P(BouncingBall, FindsThePeriodOneOrbitAndItsPeriodDoubling) {
+  const EngineKind kind = GetParam();
   const double omega = 2 * kPi, P = 1.0, r = 0.5, k = 1e7;
   const double lower = kPi * (1 - r) / (1 + r);
   const double upper = std::hypot(lower, 2 * (1 + r * r) / ((1 + r) * (1 + r)));
@@ -191,7 +198,7 @@ TEST(PlateDrives, BouncingBallFindsThePeriodOneOrbitAndItsPeriodDoubling) {
     // On the period-1 orbit (if it exists) but 5 % fast: leaving the plate at theta* with 1.05 pi g / omega.
     const double theta_star = std::acos(std::min(1.0, lower / Gamma)), A = Gamma / (omega * omega);
     const PlateMotion m(DriveKind::Sine, A, omega, theta_star);
-    return bounce(m, r, k, m.z(0.0) + 0.5 + 1e-9, 1.05 * kPi / omega, t_end);
+    return bounce(m, r, k, m.z(0.0) + 0.5 + 1e-9, 1.05 * kPi / omega, t_end, kind);
   };
   // Inside the stable window: the perturbation decays, each impact one period after the last, at theta*.
   {
@@ -219,3 +226,8 @@ TEST(PlateDrives, BouncingBallFindsThePeriodOneOrbitAndItsPeriodDoubling) {
     EXPECT_NEAR(d1 + d2, 2 * P, 1e-3);
   }
 }
+
+// The reference engine at k = 1e7 and the hard-sphere engine (k = infinity, the exact impact map
+// but for the root's round-off) find the same orbits.
+INSTANTIATE_TEST_SUITE_P(PlateEngines, BouncingBall, ::testing::Values(EngineKind::ReferenceLocated, EngineKind::Hard),
+                         [](const auto& info) { return std::string(engine_name(info.param)) == "hard" ? std::string("hard") : std::string("reference_located"); });

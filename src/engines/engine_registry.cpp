@@ -27,7 +27,6 @@ std::unique_ptr<Engine> make_reference_located(const EngineChoice& c, const Chai
   return std::make_unique<RungeKuttaEngine>(p, s, f, RungeKuttaOptions{c.dt_factor, true});
 }
 std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
-  refuse_plate(f, "hard");
   return std::make_unique<HardSphereEngine>(p, s, f, c.hard);
 }
 
@@ -39,7 +38,7 @@ const std::vector<EngineInfo>& engines() {
                                            {EngineKind::Reference, "reference", false, true, false, false, true, make_reference},
                                            {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, true,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, false, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, true, make_hard}};
   return all;
 }
 

@@ -1,6 +1,7 @@
 #include "engines/hard_sphere_engine.hpp"
 
 #include "engines/free_flight.hpp"
+#include "engines/plate_flight.hpp"
 
 #include <fmt/format.h>
 
@@ -51,11 +52,13 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
   }
   floor_h_ = initial.z[0] - 0.5 * d_;
   floor_t_ = t;
-  if (floor_ != nullptr && floor_h_ < 0) {
-    if (floor_h_ < -kTouchTolerance * d_) {
-      throw UnphysicalStateError(t, 1, 1, "particle 1 starts below the floor");
+  plate_ = floor_ != nullptr ? floor_->plate() : nullptr;
+  const double surface = plate_ != nullptr ? plate_flight::piece_state(*plate_, t).z : 0.0;
+  if (floor_ != nullptr && floor_h_ < surface) {
+    if (floor_h_ < surface - kTouchTolerance * d_) {
+      throw UnphysicalStateError(t, 1, 1, plate_ ? "particle 1 starts below the plate" : "particle 1 starts below the floor");
     }
-    floor_h_ = 0;
+    floor_h_ = surface;
   }
   last_collision_.assign(n_, -std::numeric_limits<double>::infinity());
   ring_t_.assign(options_.collapse_collisions, 0.0);
@@ -76,7 +79,8 @@ void HardSphereEngine::sync_gap(int i, double t) {
 void HardSphereEngine::sync_floor(double t) {
   const double tau = t - floor_t_;
   floor_h_ += tau * (velocity(0, floor_t_) - 0.5 * g_ * tau);
-  if (floor_ != nullptr) floor_h_ = std::max(0.0, floor_h_);
+  if (plate_ != nullptr) floor_h_ = std::max(plate_flight::piece_state(*plate_, t).z, floor_h_);
+  else if (floor_ != nullptr) floor_h_ = std::max(0.0, floor_h_);
   floor_t_ = t;
 }
 
@@ -89,6 +93,12 @@ void HardSphereEngine::predict_gap(int i) {
 // Particle 1 reaches the floor when h + w tau - g tau^2 / 2 = 0 (w its velocity at floor_t_).
 void HardSphereEngine::predict_floor() {
   if (floor_ == nullptr) return;
+  if (plate_ != nullptr) {
+    const plate_flight::Contact c = plate_flight::first_contact(*plate_, floor_t_, floor_h_, velocity(0, floor_t_), g_);
+    floor_switch_ = c.kind == plate_flight::Contact::Switch;
+    schedule_.set(schedule_.floor(), c.kind == plate_flight::Contact::None ? kNever : std::max(now_, c.t));
+    return;
+  }
   const double tau = free_flight::first_root(floor_h_, velocity(0, floor_t_), -g_);
   schedule_.set(schedule_.floor(), tau == kNever ? kNever : std::max(now_, floor_t_ + tau));
 }
@@ -134,16 +144,36 @@ void HardSphereEngine::collide(int i, double t, EventSink& sink) {
 }
 
 void HardSphereEngine::floor_hit(double t, EventSink& sink) {
+  if (plate_ != nullptr && floor_switch_) {  // the plate's formula changes: no physics, a new prediction
+    sync_floor(t);
+    predict_floor();
+    return;
+  }
   if (n_ > 1) sync_gap(0, t);
   const double v_in = velocity(0, t);
-  const double speed = floor_->bounce(std::max(0.0, -v_in));
+  double v_out = 0.0, speed = 0.0, surface = 0.0;
+  if (plate_ != nullptr) {
+    // Speeds relative to the plate; the TC model makes a hit within tc of particle 1's last
+    // collision elastic, as it does a pair's.
+    const plate_flight::PieceState p = plate_flight::piece_state(*plate_, t);
+    const double u_in = std::max(0.0, p.v - v_in);
+    const bool elastic = options_.tc > 0 && t - last_collision_[0] < options_.tc;
+    if (elastic) ++tc_elastic_;
+    speed = elastic ? u_in : floor_->bounce(u_in);
+    v_out = p.v + speed;
+    surface = p.z;
+    sink.on_event({EventKind::FloorContact, t, 0, u_in});
+  } else {
+    speed = floor_->bounce(std::max(0.0, -v_in));
+    v_out = speed;
+  }
   if (!std::isfinite(speed) || speed < 0) {
     throw UnphysicalStateError(t, 1, 1, fmt::format("the floor returned speed {} at t = {:.10g}", speed, t));
   }
-  u_[0] = speed;
+  u_[0] = v_out;
   tu_[0] = t;
-  if (n_ > 1) gaps_.c[0] -= speed - v_in;
-  floor_h_ = 0.0;
+  if (n_ > 1) gaps_.c[0] -= v_out - v_in;
+  floor_h_ = surface;
   floor_t_ = t;
   last_collision_[0] = t;
   ++counters_.floor_hits;

@@ -12,6 +12,11 @@
 // Luding and McNamara continues past it: a collision of a particle whose previous collision (a
 // floor or wall hit included) lies less than t_c ago is elastic (e = 1).
 //
+// Above a vibrating plate (model/plate_motion.hpp) particle 1 meets the moving surface as a hard
+// plate of restitution e (the hard-sphere limit of the soft engines' plate contact): its velocity
+// relative to the plate reverses and shrinks by e (by 1 under the TC model). Contact times are the
+// first roots of plate_flight.hpp; a piecewise drive's switching instants are floor events too.
+//
 // Precision: gaps and relative velocities are stored as such, each gap with its own reference
 // time, and a collision updates the relative velocities from relative velocities only
 // (-e r for the pair, r - Delta for the neighbours), so a collapsing cluster whose gaps and
@@ -67,6 +72,8 @@ class HardSphereEngine final : public Engine {
   std::vector<double> u_, tu_;                 // velocity of each particle at its reference time
   GapLines<double> gaps_;                      // gap i: s at t, and the rate c = v_{i+1} - v_i (constant)
   double floor_h_ = 0, floor_t_ = 0;           // z_1 - d/2 at floor_t_
+  const PlateMotion* plate_ = nullptr;         // floor_'s plate, or nullptr for a floor at rest
+  bool floor_switch_ = false;                  // the floor slot holds a plate's switching instant, not a hit
   std::vector<double> last_collision_;         // TC model: time of each particle's last collision
   std::uint64_t tc_elastic_ = 0;
 
