@@ -77,6 +77,11 @@ py::dict trace(const py::kwargs& kwargs) {
   params["e"] = spec.run.params.e;
   params["k"] = spec.run.params.k;
   params["T0"] = spec.run.params.kT0;
+  if (!spec.free_space && spec.run.drive.plate()) {
+    params["drive"] = std::string(drive_name(spec.run.drive.kind));
+    params["plate_A"] = spec.run.drive.A;
+    params["plate_omega"] = spec.run.drive.omega;
+  }
   params["engine"] = std::string(engine_name(spec.run.engine.kind));
   params["seed"] = spec.run.seed;
   params["t_from"] = spec.t_from;
@@ -87,6 +92,13 @@ py::dict trace(const py::kwargs& kwargs) {
   d["parameters"] = params;
   d["t"] = t;
   d["z"] = z;
+  if (!tr.plate.empty()) {  // the plate's surface at each sample
+    py::array_t<double> plate(S);
+    for (py::ssize_t s = 0; s < S; ++s) plate.mutable_at(s) = tr.plate[static_cast<std::size_t>(s)];
+    d["plate"] = plate;
+  } else {
+    d["plate"] = py::none();
+  }
   d["events"] = events;
   d["interrupted"] = stop.has_value() || tr.interrupted;
   if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);
@@ -99,7 +111,8 @@ void bind_trace(py::module_& m) {
   m.def("trace", &trace,
         "Record the heights z_i(t) of every particle on a grid of times (granchain trace): the run parameters that trace "
         "takes, setup ('driven' or 'free'), t_from, t_to, dt, and for free space a, v0, dv0, realization. Returns a dict: "
-        "t (S), z (S x N), events (t, kind, i, j, speed), parameters, interrupted.");
+        "t (S), z (S x N), plate (S: the surface of a vibrating plate, or None), events (t, kind, i, j, speed), parameters, "
+        "interrupted.");
   m.def("trace_parameters", [] {
     py::list l = parameter_list(trace_window_parameters());
     for (const Parameter& p : run_parameters())

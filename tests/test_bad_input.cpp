@@ -104,6 +104,7 @@ const std::vector<BadInputRow> kRows = {
     {"run --drive sine --A 0.1 --omega 1e4 --engine reference --T 1 --db store.db", 2, {"--omega = 1e4 is out of range", "10 contact times"}, kAll},
     {"run --drive sine --A 1e12 --omega 1 --engine reference --T 1 --db store.db", 2, {"--A = 1e12 is out of range", "height scale"}, kAll},
     {"run --drive sine --Gamma 2 --f 0.5 --N 2 --engine reference --T 1 --no-db", 0, {}, kAll, {"drive: sine plate"}},
+    {"trace --setup free --drive sine --A 0.1 --omega 2 --engine reference -o t.csv", 2, {"--drive = 'sine'", "free space has no floor"}, kAll},
 
     // k, m, T, T0, g, d: a contact must last 1e6 clock resolutions, heights must resolve d.
     {"run --k 1e300", 2, {"--k = 1e300", "k <= 1.21e+44", "tau_c", "exact engine's clock"}, kAll},

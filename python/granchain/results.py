@@ -159,7 +159,8 @@ class CollapseResult(Record):
 
 
 class TraceResult(Record):
-    """A space-time trace (trace()): t (S), z (S x N), events."""
+    """A space-time trace (trace()): t (S), z (S x N), plate (S, a vibrating plate's surface, or
+    None), events."""
 
     def __repr__(self):
         p = self["parameters"]
@@ -168,13 +169,16 @@ class TraceResult(Record):
         tail = f"{span}, {len(t)} samples, {len(self['events']['t'])} events"
         if self.get("interrupted"):
             tail += ", interrupted"
-        return f"TraceResult({_point(p, ('setup', 'N', 'e', 'k', 'engine', 'seed'))}: {tail})"
+        return f"TraceResult({_point(p, ('setup', 'N', 'e', 'k', 'drive', 'plate_A', 'plate_omega', 'engine', 'seed'))}: {tail})"
 
     def to_pandas(self):
-        """The heights as a DataFrame: index t, columns z1 .. zN."""
+        """The heights as a DataFrame: index t, columns z1 .. zN (and z_plate above a plate)."""
         pd = _pandas("TraceResult.to_pandas")
         z = self["z"]
-        return pd.DataFrame(z, index=pd.Index(self["t"], name="t"), columns=[f"z{i + 1}" for i in range(z.shape[1])])
+        frame = pd.DataFrame(z, index=pd.Index(self["t"], name="t"), columns=[f"z{i + 1}" for i in range(z.shape[1])])
+        if self.get("plate") is not None:
+            frame["z_plate"] = self["plate"]
+        return frame
 
     def events_frame(self):
         """The events as a DataFrame (t, kind, i, j, speed)."""

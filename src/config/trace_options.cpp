@@ -61,6 +61,10 @@ TraceSpec resolve_trace_spec(const std::map<std::string, RawValue>& raw) {
   TraceSpec spec;
   spec.run = resolve_run_options(run_raw).spec;
   spec.free_space = setup == "free";
+  if (spec.free_space && spec.run.drive.plate())
+    throw InputError(fmt::format("--drive = '{}': free space has no floor to vibrate; valid: --setup driven with a plate, or --drive "
+                                 "thermal (left out) in free space",
+                                 run_raw.at("drive").text()));
   spec.launch = {real("a"), real("v0"), real("dv0")};
   spec.realization = static_cast<int>(value("realization", read_integer));
   const double from = real("from"), to = real("to"), dt = real("dt");
