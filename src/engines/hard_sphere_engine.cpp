@@ -199,8 +199,15 @@ void HardSphereEngine::watch_collapse(double t, int pair) {
   // With the TC model on, the collisions inside the span stayed inelastic because tc is shorter
   // than the intervals between a particle's collisions there; a tc of at least collapse_time makes
   // every further collision of a particle inside the span elastic.
+  // With tc >= collapse_time every collision inside the span was elastic: what still collides
+  // without end is a stack at rest (on the floor or a plate) whose relative speeds have decayed
+  // below round-off, which hard spheres hold up only by infinitely many collisions.
   const std::string remedy =
-      options_.tc > 0
+      options_.tc >= options_.collapse_time
+          ? fmt::format("the TC model (tc = {:g}) made them elastic, but particles resting on each other{} at relative speeds "
+                        "of round-off still collide without end; use a soft engine",
+                        options_.tc, floor_involved ? " or on the floor" : "")
+      : options_.tc > 0
           ? fmt::format("the TC model did not prevent it: tc = {:g} is shorter than the span the engine watches ({} "
                         "collisions within {:g}); use tc >= {:g} or a soft engine",
                         options_.tc, m, options_.collapse_time, options_.collapse_time)
