@@ -160,11 +160,7 @@ py::dict run_keywords(const py::kwargs& kwargs) {
   opts.use_db = db.has_value();
   if (audit && !audit->is_none() && !PyBool_Check(audit->ptr()))
     throw InputError(fmt::format("--audit: audit = {} is not True or False", std::string(py::repr(*audit))));
-  if (audit && !audit->is_none() && audit->cast<bool>()) {
-    if (!engine_info(opts.spec.engine.kind).has_audit)
-      throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", engine_name(opts.spec.engine.kind)));
-    opts.spec.engine.audit = true;
-  }
+  if (audit && !audit->is_none() && audit->cast<bool>()) request_audit(opts);
   if (opts.use_db) {
     try {
       ResultsStore::preflight(opts.db_path);

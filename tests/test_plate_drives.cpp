@@ -10,7 +10,9 @@
 
 #include "engines/engine_registry.hpp"
 #include "engines/runge_kutta_engine.hpp"
+#include "simulation/driven_run.hpp"
 #include "model/chain_parameters.hpp"
+#include "model/driven_column.hpp"
 #include "model/floor.hpp"
 #include "model/plate_motion.hpp"
 #include "test_helpers.hpp"
@@ -231,3 +233,70 @@ TEST_P(BouncingBall, FindsThePeriodOneOrbitAndItsPeriodDoubling) {
 // but for the root's round-off) find the same orbits.
 INSTANTIATE_TEST_SUITE_P(PlateEngines, BouncingBall, ::testing::Values(EngineKind::ReferenceLocated, EngineKind::Hard),
                          [](const auto& info) { return std::string(engine_name(info.param)) == "hard" ? std::string("hard") : std::string("reference_located"); });
+
+namespace {
+
+// Heights and events of a column above a plate from `driven_column_initial_state` with its seed,
+// the plate's phase drawn from the same seed (as a run does), by one engine up to each sample time.
+struct ColumnTrace {
+  std::vector<std::vector<double>> z;
+  std::size_t contact_ends = 0, floor_contacts = 0, floor_hits = 0;
+};
+
+ColumnTrace column_trace(EngineKind kind, const ChainParameters& p, const DriveSpec& drive, const std::vector<double>& times) {
+  const auto floor = column_drive(p, drive, 11);
+  const ChainState initial = driven_column_initial_state(p, 11, drive);
+  EngineChoice choice{.kind = kind};
+  choice.dt_factor = 1000.0;
+  const auto engine = make_engine(choice, p, initial, floor.get());
+  test_support::EventRecorder rec;
+  ColumnTrace out;
+  for (double t : times) {
+    engine->advance_to(t, rec);
+    out.z.push_back(engine->state().z);
+  }
+  out.contact_ends = rec.count(EventKind::ContactEnd);
+  out.floor_contacts = rec.count(EventKind::FloorContact);
+  out.floor_hits = rec.count(EventKind::FloorHit);
+  return out;
+}
+
+}  // namespace
+
+// The exact engine runs the piecewise plates (its grounded cluster: the mirror cluster forced by
+// 2 (g + a_p), exact_plate.cpp); the reference engine is its check. A column of three on the
+// quadratic arcs and on the sawtooth: the same contacts with the plate and between the spheres, and
+// heights that agree to the reference's step error (dt = tau_c / 1000) until the column's chaos
+// amplifies it; a condensed column of ten (e = 0.5, resting on the plate between bounces): the same
+// n_coll within the errors.
+TEST(PlateDrives, ExactAgreesWithTheReferenceOnThePiecewisePlates) {
+  for (DriveKind kind : {DriveKind::Quadratic, DriveKind::Sawtooth}) {
+    const ChainParameters p{.N = 3, .k = 1e5, .e = 0.7};
+    const DriveSpec drive{kind, 0.3, 4.0};
+    const std::vector<double> times{1.0, 2.0, 3.0, 4.0};
+    const ColumnTrace exact = column_trace(EngineKind::Exact, p, drive, times);
+    const ColumnTrace ref = column_trace(EngineKind::ReferenceLocated, p, drive, times);
+    EXPECT_EQ(exact.contact_ends, ref.contact_ends) << drive_name(kind);
+    EXPECT_EQ(exact.floor_contacts, ref.floor_contacts) << drive_name(kind);
+    EXPECT_EQ(exact.floor_hits, ref.floor_hits) << drive_name(kind);
+    EXPECT_GE(exact.floor_hits, 2u) << drive_name(kind);
+    EXPECT_GE(exact.contact_ends, 5u) << drive_name(kind);
+    for (std::size_t s = 0; s < times.size(); ++s)
+      for (int i = 0; i < p.N; ++i) EXPECT_NEAR(exact.z[s][i], ref.z[s][i], 1e-4) << drive_name(kind) << " t=" << times[s] << " i=" << i;
+  }
+  for (DriveKind kind : {DriveKind::Quadratic, DriveKind::Sawtooth}) {
+    RunSpec spec;
+    spec.params = {.N = 10, .k = 1e5, .e = 0.5};
+    spec.drive = {kind, kind == DriveKind::Sawtooth ? 0.1 : 2.0 / (gamma_factor(kind) * 25.0), 5.0};
+    spec.T = 300;
+    spec.transient = 30;
+    spec.seed = 3;
+    const RunResult exact = run_driven_column(spec);
+    spec.engine.kind = EngineKind::ReferenceLocated;
+    const RunResult ref = run_driven_column(spec);
+    const double sigma = std::hypot(exact.n_coll.error, ref.n_coll.error);
+    EXPECT_LT(std::abs(exact.n_coll.value - ref.n_coll.value), 3 * sigma)
+        << drive_name(kind) << ": exact " << exact.n_coll.value << " reference " << ref.n_coll.value;
+    EXPECT_GT(exact.floor_hits, 100u) << drive_name(kind);
+  }
+}

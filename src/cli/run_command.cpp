@@ -151,11 +151,7 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       if (opt->count() > 0) raw[name] = RawValue{impl.flag_values[name], ""};
     opts = resolve_run_options(raw);
     opts.use_db = !impl.no_db;
-    if (impl.audit) {
-      if (!engine_info(opts.spec.engine.kind).has_audit)
-        throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", engine_name(opts.spec.engine.kind)));
-      opts.spec.engine.audit = true;
-    }
+    if (impl.audit) request_audit(opts);
     // The store is written too: it may not be the config file, nor the JSON the store.
     check_outputs({{"--db", opts.use_db ? opts.db_path : ""}, {"--json", json_requested && !json_stdout ? impl.json_path : ""}},
                   {{"--config", impl.config_path}});

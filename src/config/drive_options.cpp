@@ -16,11 +16,11 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 bool plate_drive(const RunSpec& s) { return s.drive.plate(); }
 
-// The engines that run the plates, for messages: "reference, reference-located".
-std::string plate_engine_names() {
+// The engines that run a drive, for messages: "reference, reference-located, hard".
+std::string engines_running(DriveKind kind) {
   std::string names;
   for (const EngineInfo& e : engines())
-    if (e.plate_drives) names += (names.empty() ? "" : ", ") + std::string(e.name);
+    if (runs_drive(e, kind)) names += (names.empty() ? "" : ", ") + std::string(e.name);
   return names;
 }
 
@@ -97,11 +97,12 @@ void resolve_drive(RunOptions& o, const std::map<std::string, RawValue>& raw) {
     return;
   }
   const EngineInfo& engine = engine_info(o.spec.engine.kind);
-  if (!engine.plate_drives) {
+  if (!runs_drive(engine, drive.kind)) {
     const RawValue& v = raw.at("drive");
-    throw InputError(fmt::format("--drive = '{}'{} is not run by the {} engine; valid: thermal with every engine, {} with --engine {}",
-                                 v.text(), from_where(v), engine.name, "sine, sawtooth, quadratic", plate_engine_names()));
+    throw InputError(fmt::format("--drive = '{}'{} is not run by the {} engine; valid: --engine {} for this drive", v.text(),
+                                 from_where(v), engine.name, engines_running(drive.kind)));
   }
+
   if (given("omega") && given("f"))
     throw InputError(fmt::format("--f = {}{}: the frequency is given twice, with --omega = {}; valid: one of --omega, --f",
                                  raw.at("f").text(), from_where(raw.at("f")), raw.at("omega").text()));

@@ -252,6 +252,15 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
 
 double default_measuring_time(int N) { return N < 50 ? 1e4 : 1e3; }
 
+void request_audit(RunOptions& o) {
+  if (!engine_info(o.spec.engine.kind).has_audit)
+    throw InputError(fmt::format("--audit checks the exact engine; --engine = '{}' has no audit", engine_name(o.spec.engine.kind)));
+  if (o.spec.drive.plate())
+    throw InputError(fmt::format("--audit: the exact engine's audit does not cover a vibrating plate (--drive = '{}'); valid: --audit "
+                                 "with --drive thermal", drive_name(o.spec.drive.kind)));
+  o.spec.engine.audit = true;
+}
+
 double shortest_resolved_time(double t, bool fine) { return kResolutionSteps * (fine ? std::ldexp(ulp(t), -53) : ulp(t)); }
 
 double largest_resolved_k(double m, double e, double t, bool fine) {

@@ -53,6 +53,10 @@ void set_stored_value(RunSpec& spec, std::size_t i, const TypedValue& value);
 // T = 1e4 for N < 50 and 1e3 for N >= 50 (the paper's choice), transient = T / 10.
 RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw);
 
+// Turns on the engine's audit (EngineChoice::audit) for `run --audit` and Python's audit=True:
+// InputError for an engine without one, or above a vibrating plate, which it does not cover.
+void request_audit(RunOptions& o);
+
 // The paper's measuring time, the default of T: 1e4 for N < 50, 1e3 for N >= 50.
 double default_measuring_time(int N);
 

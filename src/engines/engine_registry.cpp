@@ -10,14 +10,7 @@ namespace granchain {
 
 namespace {
 
-// An engine whose entry says it does not run the plates never gets one (the options refuse it first).
-void refuse_plate(const FloorDrive* f, const char* name) {
-  if (f != nullptr && f->plate() != nullptr)
-    throw std::invalid_argument(std::string("the ") + name + " engine does not run the vibrating plates");
-}
-
 std::unique_ptr<Engine> make_exact(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
-  refuse_plate(f, "exact");
   return std::make_unique<ExactEngine>(p, s, f, ExactOptions{.audit = c.audit});
 }
 std::unique_ptr<Engine> make_reference(const EngineChoice& c, const ChainParameters& p, const ChainState& s, FloorDrive* f) {
@@ -33,12 +26,17 @@ std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& 
 }  // namespace
 
 const std::vector<EngineInfo>& engines() {
-  //                                        kind                     name          hard   stepped fine  audit  plates
-  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, false, make_exact},
-                                           {EngineKind::Reference, "reference", false, true, false, false, true, make_reference},
-                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, true,
+  constexpr unsigned every = drive_bit(DriveKind::Thermal) | drive_bit(DriveKind::Sine) | drive_bit(DriveKind::Sawtooth) |
+                             drive_bit(DriveKind::Quadratic);
+  // The exact engine's grounded cluster needs a constant plate acceleration between events: the
+  // piecewise drives only.
+  constexpr unsigned piecewise = every & ~drive_bit(DriveKind::Sine);
+  //                                        kind                     name          hard   stepped fine  audit  drives
+  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, piecewise, make_exact},
+                                           {EngineKind::Reference, "reference", false, true, false, false, every, make_reference},
+                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, every,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, true, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, every, make_hard}};
   return all;
 }
 

@@ -13,6 +13,7 @@
 #include "engines/hard_sphere_options.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
+#include "model/plate_motion.hpp"
 
 namespace granchain {
 
@@ -34,9 +35,12 @@ struct EngineInfo {
   bool time_stepped;         // fixed steps dt = tau_c / dt_factor: dt_factor is part of a run's identity
   bool fine_clock;           // FineTime clock, resolving 2^-53 ulp(t) at time t; otherwise ulp(t)
   bool has_audit;            // --audit checks it
-  bool plate_drives;         // runs the vibrating plates (model/plate_motion.hpp), not only a floor at rest
+  unsigned drives;           // the drives it runs (model/plate_motion.hpp), a bit per DriveKind (drive_bit)
   std::unique_ptr<Engine> (*make)(const EngineChoice&, const ChainParameters&, const ChainState&, FloorDrive*);
 };
+
+constexpr unsigned drive_bit(DriveKind kind) { return 1u << static_cast<unsigned>(kind); }
+inline bool runs_drive(const EngineInfo& e, DriveKind kind) { return (e.drives & drive_bit(kind)) != 0; }
 
 // Every engine, the default first.
 const std::vector<EngineInfo>& engines();

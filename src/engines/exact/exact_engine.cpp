@@ -16,7 +16,8 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
       d_(p.d),
       g_(p.g),
       floor_(floor),
-      tables_(p.N, p.k / p.m, damping_constant(p.k, p.e, p.m)) {
+      // Above a plate, a grounded cluster of n particles uses the mirror cluster's table of 2n.
+      tables_(floor != nullptr && floor->plate() != nullptr ? 2 * p.N : p.N, p.k / p.m, damping_constant(p.k, p.e, p.m)) {
   if (n_ < 1 || static_cast<int>(initial.z.size()) != n_ || static_cast<int>(initial.v.size()) != n_) {
     throw std::invalid_argument("ExactEngine: the initial state must hold N positions and velocities");
   }
@@ -89,8 +90,17 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     }
   }
   floor_s_ = initial.z[0] - 0.5 * d_;
-  if (floor_ != nullptr && floor_s_ < -1e-12 * d_) {
-    throw UnphysicalStateError(t, 1, 1, "initial state: particle 1 is below the floor");
+  plate_ = floor_ != nullptr ? floor_->plate() : nullptr;
+  if (plate_ != nullptr) {
+    if (plate_->kind() == DriveKind::Sine) throw std::invalid_argument("ExactEngine: the sinusoidal plate is not run by the exact engine");
+    if (audit_) throw std::invalid_argument("ExactEngine: the audit does not cover a vibrating plate");
+    start_piece(now_);
+    for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_}) v->assign(2 * static_cast<std::size_t>(n_), 0.0);
+    for (auto* v : {&gxr_, &gxdr_, &gv_}) v->assign(static_cast<std::size_t>(n_) + 1, 0.0);
+  }
+  const double surface = plate_ != nullptr ? plate_z(now_) : 0.0;
+  if (floor_ != nullptr && floor_s_ < surface - 1e-12 * d_) {
+    throw UnphysicalStateError(t, 1, 1, plate_ ? "initial state: particle 1 is below the plate" : "initial state: particle 1 is below the floor");
   }
   rebase_floor(t);
 
@@ -220,6 +230,15 @@ double ExactEngine::gap_at(int i, Time t) const {
 void ExactEngine::sync_gap(int i, Time t) { sync_gap_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t)); }
 
 void ExactEngine::sync_gap_edges(int i, Time t, double ma, double mb) {
+  if (i == ground_gap()) {  // above the grounded cluster: the line bends with -(g + a_p)
+    const double tau = t - gaps_.t[i];
+    gaps_.s[i] += tau * (gaps_.c[i] + 0.5 * gp2_ * tau) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
+    gaps_.c[i] += gp2_ * tau;
+    gaps_.t[i] = t;
+    gap_ma_[i] = ma;
+    gap_mb_[i] = mb;
+    return;
+  }
   gaps_.s[i] += gaps_.c[i] * (t - gaps_.t[i]) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
   gaps_.t[i] = t;
   gap_ma_[i] = ma;
@@ -258,7 +277,10 @@ void ExactEngine::handle(int slot, const Time& t, EventSink& sink) {
   switch (family) {
     case EventFamily::Floor:
       if (s.kind == SlotKind::FloorHit) {
-        floor_hit(t, sink);
+        if (plate_ != nullptr) plate_contact(t, sink);
+        else floor_hit(t, sink);
+      } else if (s.kind == SlotKind::PlateSwitch) {
+        plate_switch(t, sink);
       } else {
         sync_floor(t);
         predict_floor();
@@ -266,7 +288,9 @@ void ExactEngine::handle(int slot, const Time& t, EventSink& sink) {
       return;
     case EventFamily::Interaction: {
       const int i = index;
-      if (s.kind != SlotKind::ContactBegin) {
+      if (i == ground_gap() && s.kind == SlotKind::ContactBegin) {
+        grounded_merge(i, t, sink);
+      } else if (s.kind != SlotKind::ContactBegin) {
         sync_gap(i, t);
         predict_gap(i);
       } else if (shortcuts_ && lo_of_[i] == i && hi_[i + 1] == i + 1 && pair_.tau > 0 && gaps_.c[i] != 0.0) {
@@ -280,6 +304,21 @@ void ExactEngine::handle(int slot, const Time& t, EventSink& sink) {
     }
     case EventFamily::Local: {
       const int lo = index;
+      if (lo == 0 && grounded_) {
+        if (s.kind == SlotKind::ContactEnd && s.pair < 0) {
+          plate_release(t, s.tau, sink, true);
+        } else if (s.kind == SlotKind::ContactEnd) {
+          grounded_split(s.pair, t, s.tau, sink);
+        } else if (s.kind == SlotKind::PassThrough) {
+          throw UnphysicalStateError(t.value(), s.pair < 0 ? 1 : s.pair + 1, s.pair < 0 ? 1 : s.pair + 2,
+                                     s.pair < 0 ? fmt::format("particle 1 passed through the plate at t = {:.10g}", t.value())
+                                                : fmt::format("particles {} and {} passed through each other at t = {:.10g} "
+                                                              "(overlap reached d)", s.pair + 1, s.pair + 2, t.value()));
+        } else {
+          grounded_refresh(t);
+        }
+        return;
+      }
       if (s.kind == SlotKind::ContactEnd) {
         if (shortcuts_ && is_fresh_pair(lo) && s.tau == pair_.tau) {
           ++shortcut_events_;

@@ -18,6 +18,15 @@
 // k = 1e12 keeps its full relative precision, and so does a relative speed of 1e-20 between
 // particles that move at speed 1 (gravity cancels in every gap). Absolute velocities enter only the
 // floor height and the reported state.
+//
+// A vibrating plate with a piecewise drive (the sawtooth, the quadratic arcs: model/plate_motion.hpp)
+// is one more event family of the same skeleton (exact_plate.cpp): particle 1 flying above it
+// meets the surface at the first root of a parabola minus the piece's polynomial, and the cluster
+// touching it ("grounded") is the symmetric half of a mirror cluster of twice its size (tables_[2n])
+// whose middle overlap, X = 2 x_w, is forced by 2 (g + a_p): on each piece (a_p constant) its
+// overlaps are the constant particular solution plus the mirror cluster's free symmetric modes,
+// searched as any cluster's. The piece's end is an event (the grounded cluster re-forms about the
+// new particular solution; the sawtooth's drop releases it).
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -96,7 +105,7 @@ class ExactEngine final : public Engine {
   // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
   static constexpr double kResolutionSkip = 1e-6;
 
-  enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh };
+  enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh, PlateSwitch };
   // What a slot's event is (its time is the schedule's).
   struct SlotDetail {
     SlotKind kind = SlotKind::None;
@@ -145,7 +154,10 @@ class ExactEngine final : public Engine {
   void modes_at(int lo, double tau, double* y, double* yd) const;
   // Mode part of the bottom (top = false) or top particle's height: its displacement from the
   // centre of mass up to a constant (0 for a single particle).
-  double edge_mode(int lo, bool top, Time t) const { return hi_[lo] == lo ? 0.0 : cluster_edge_mode(lo, top, t); }
+  double edge_mode(int lo, bool top, Time t) const {
+    if (lo == 0 && grounded_) return top ? grounded_edge_top(t) : 0.0;
+    return hi_[lo] == lo ? 0.0 : cluster_edge_mode(lo, top, t);
+  }
   double cluster_edge_mode(int lo, bool top, Time t) const;  // clusters of two or more
   // Height coordinate of particle 1: centre-of-mass displacement since formation plus mode part.
   double bottom_u(Time t) const { return bottom_u_mode(t, edge_mode(0, false, t)); }
@@ -160,7 +172,14 @@ class ExactEngine final : public Engine {
   // The same from the mode parts of the lower cluster's top (m_a) and the upper one's bottom (m_b)
   // at t.
   double gap_from_edges(int i, Time t, double m_a, double m_b) const {
-    return gaps_.line_at(i, t) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
+    return gap_line(i, t) + (m_b - gap_mb_[i]) - (m_a - gap_ma_[i]);
+  }
+  // The line part of gap i: s + c (t - t_i), plus -(g + a_p) (t - t_i)^2 / 2 above a grounded
+  // cluster, whose "centre of mass" is the plate.
+  double gap_line(int i, Time t) const {
+    if (i != ground_gap()) return gaps_.line_at(i, t);
+    const double tau = t - gaps_.t[i];
+    return gaps_.s[i] + tau * (gaps_.c[i] + 0.5 * gp2_ * tau);
   }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void sync_gap_edges(int i, Time t, double m_a, double m_b);  // the same, given the edges' mode parts at t
@@ -218,6 +237,51 @@ class ExactEngine final : public Engine {
   }
   bool shortcuts_ = true;
   std::uint64_t shortcut_events_ = 0;
+
+  // --- a vibrating plate (exact_plate.cpp) ---
+  // The current piece of the plate's motion: z_p = z + v tau + a tau^2 / 2 from t0 to end.
+  struct Piece {
+    Time t0 = 0, end = 0;
+    double z = 0, v = 0, a = 0;
+    bool drop = false;  // the motion jumps at `end` (the sawtooth)
+  };
+  double plate_z(Time t) const {
+    const double tau = t - piece_.t0;
+    return piece_.z + tau * (piece_.v + 0.5 * piece_.a * tau);
+  }
+  double plate_v(Time t) const { return piece_.v + piece_.a * (t - piece_.t0); }
+  void start_piece(Time t);  // the piece that begins at t (or contains it)
+  int ground_gap() const { return grounded_ && hi_[0] + 1 < n_ ? hi_[0] : -1; }
+  // xr, xdr: the n real overlaps of the grounded cluster 0..n-1 (X = 2 x_w, then pairs 0..n-2) and
+  // their rates at t.
+  void form_grounded(int n, Time t, const double* xr, const double* xdr);
+  void grounded_modes(double tau, double* y, double* yd) const;
+  // Real overlaps, rates (n each) and velocities (n) of the grounded cluster at its local time tau
+  // (absolute time t).
+  void grounded_state(double tau, Time t, double* xr, double* xdr, double* v) const;
+  double grounded_edge_top(Time t) const;  // mode part of its top particle's height
+  double grounded_reach_top(double acc) const;
+  double grounded_offset(int i) const;  // particular solution of virtual overlap i on this piece
+  Root first_grounded_root(bool watch_pass_through) const;
+  void predict_grounded();
+  void predict_ground_gap(int i);
+  void plate_contact(Time t, EventSink& sink);
+  // Particle 1 leaves the plate at t (local time tau); then the floor is re-predicted unless a new
+  // piece is about to start.
+  void plate_release(Time t, double tau, EventSink& sink, bool predict_floor_after);
+  void grounded_split(int pair, Time t, double tau, EventSink& sink);
+  void grounded_merge(int pair, Time t, EventSink& sink);
+  void plate_switch(Time t, EventSink& sink);
+  void grounded_refresh(Time t);
+  const PlateMotion* plate_ = nullptr;
+  Piece piece_;
+  bool grounded_ = false;
+  int gn_ = 0;                  // particles of the grounded cluster
+  Time gt0_ = 0;                // its formation
+  double g_search_from_ = 0;    // local time from which its contact ends are searched
+  double gp2_ = 0;              // -(g + a_p): the line's curvature of the gap above it
+  std::vector<double> gy0_, gyd0_, gamp0_;  // its mirror modes at formation, amplitude bounds (2n - 1)
+  mutable std::vector<double> gx_, gxd_, gy_, gyd_, gxr_, gxdr_, gv_;  // scratch
 
   // --- audit (exact_audit.cpp) ---
   static constexpr int kAuditInstants = 2;

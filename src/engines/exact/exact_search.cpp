@@ -10,6 +10,7 @@
 
 #include "engines/exact/taylor_bounds.hpp"
 #include "engines/free_flight.hpp"
+#include "engines/plate_flight.hpp"
 
 namespace granchain {
 
@@ -44,7 +45,8 @@ double ExactEngine::bound_clear(double c0, double c1, double p2, double reach, b
 
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max, double sigma0) const {
   if (fn.terms == 0) {
-    const double s = free_flight::first_root(fn.c0, fn.c1, fn.p2);
+    // (p2 > 0 only above a plate whose deceleration exceeds g: first_root_any takes either sign)
+    const double s = plate_flight::first_root_any(fn.c0, fn.c1, fn.p2);
     ++counters_.closed_form_predictions;
     return s <= sigma_max ? Root{Root::Found, s, 0} : Root{Root::None, s, 0};
   }
@@ -274,6 +276,7 @@ double ExactEngine::pair_contact_end(int lo) const {
 }
 
 void ExactEngine::predict_cluster(int lo) {
+  if (lo == 0 && grounded_) return predict_grounded();
   const int n = cluster_size(lo);
   if (n == 1) {
     set_slot(cluster_slot(lo), kInf, SlotKind::None, lo);
@@ -322,6 +325,7 @@ bool ExactEngine::has_holds(int lo) const {
 }
 
 void ExactEngine::predict_gap(int i) {
+  if (i == ground_gap()) return predict_ground_gap(i);
   const int a = lo_of_[i], b = i + 1;
   const Time t = gaps_.t[i];
   if (a == i && hi_[b] == b) {  // two free particles: a line, no edge function to build
@@ -370,23 +374,46 @@ void ExactEngine::predict_floor() {
     set_slot(floor_slot(), kInf, SlotKind::None, 0);
     return;
   }
+  // A grounded cluster: the floor's only event is the end of the plate's piece.
+  if (grounded_) {
+    set_slot(floor_slot(), piece_.end, SlotKind::PlateSwitch, 0);
+    return;
+  }
   const Time t = floor_t_;
   const double tau = t - t0_[0];
   EdgeFunction fn;
-  // f(s) = h(t) + u_1(t+s) - u_1(t): a parabola under gravity plus the modes of the cluster.
+  // f(s) = h(t) + u_1(t+s) - u_1(t): a parabola under gravity plus the modes of the cluster; above
+  // a plate, minus the surface's polynomial on its piece, up to the piece's end.
   fn.c1 = V0_[0] - g_ * tau;
   fn.p2 = -g_;
   fn.c0 = floor_s_ - (floor_u_ - tau * (V0_[0] - 0.5 * g_ * tau));
   fn.noise = 8 * std::numeric_limits<double>::epsilon() *
              (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
+  Time horizon = slot_time(cluster_slot(0));
+  bool switch_first = false;  // the piece ends before cluster 0's own next event
+  if (plate_ != nullptr) {
+    const double zp = plate_z(t);
+    fn.c0 -= zp;
+    fn.c1 -= plate_v(t);
+    fn.p2 -= piece_.a;
+    fn.noise += 8 * std::numeric_limits<double>::epsilon() * std::abs(zp);
+    if (piece_.end <= horizon) {
+      horizon = piece_.end;
+      switch_first = true;
+    }
+  }
+  const auto no_event = [&] {
+    if (switch_first) set_slot(floor_slot(), piece_.end, SlotKind::PlateSwitch, 0);
+    else clear_slot_before(floor_slot(), horizon, 0);
+  };
   fn.modes_nonnegative = !has_holds(0);
-  const double sigma_max = slot_time(cluster_slot(0)) - t;
+  const double sigma_max = horizon - t;
   double clear = 0.0;
   if (cluster_size(0) >= 2) {
     fn.reach = edge_reach(0, false, 0.0);
     clear = bound_clear(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative);
     if (bound_excludes(clear, sigma_max)) {
-      clear_slot_before(floor_slot(), slot_time(cluster_slot(0)), 0);
+      no_event();
       return;
     }
     fn.term[fn.terms++] = edge_term(0, false, +1.0, t);
@@ -395,7 +422,10 @@ void ExactEngine::predict_floor() {
   switch (r.kind) {
     case Root::Found: set_slot(floor_slot(), t + r.sigma, SlotKind::FloorHit, 0); break;
     case Root::Refresh: set_slot(floor_slot(), t + r.sigma, SlotKind::Refresh, 0); break;
-    case Root::None: set_slot(floor_slot(), kInf, SlotKind::None, 0); break;
+    case Root::None:
+      if (switch_first) set_slot(floor_slot(), piece_.end, SlotKind::PlateSwitch, 0);
+      else set_slot(floor_slot(), kInf, SlotKind::None, 0);
+      break;
   }
 }
 

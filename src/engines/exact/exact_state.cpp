@@ -14,6 +14,14 @@ const ChainState& ExactEngine::state() const {
   double* m_top = sxd_.data();  // mode part of each cluster's top particle, at lo
   for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
     double m_bottom = 0.0;
+    if (lo == 0 && grounded_) {  // on the plate: z_1 = z_p + d/2 - X/2, pairs from the mirror modes
+      double* xr = gxr_.data();
+      grounded_state(now_ - gt0_, now_, xr, gxdr_.data(), &state_.v[0]);
+      for (int q = 1; q < gn_; ++q) x[q - 1] = xr[q];
+      state_.z[0] = plate_z(now_) + 0.5 * d_ - 0.5 * xr[0];
+      m_top[0] = grounded_edge_top(now_);
+      continue;
+    }
     if (hi_[lo] == lo) {  // a free particle (the common case, written out)
       state_.v[lo] = com_velocity(lo, now_);
       m_top[lo] = 0.0;
@@ -36,7 +44,14 @@ const ChainState& ExactEngine::state() const {
 
 std::vector<double> ExactEngine::overlaps() const {
   std::vector<double> x(n_, 0.0), xd(n_, 0.0), v(n_, 0.0);
-  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) cluster_state(lo, now_, &x[lo], &xd[lo], &v[lo]);
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
+    if (lo == 0 && grounded_) {
+      grounded_state(now_ - gt0_, now_, gxr_.data(), gxdr_.data(), nullptr);
+      for (int q = 1; q < gn_; ++q) x[q - 1] = gxr_[q];
+      continue;
+    }
+    cluster_state(lo, now_, &x[lo], &xd[lo], &v[lo]);
+  }
   for (int i = 0; i + 1 < n_; ++i) {
     if (lo_of_[i] != lo_of_[i + 1]) x[i] = -gap_at(i, now_);
   }
@@ -51,6 +66,10 @@ double ExactEngine::mechanical_energy_per_mass() const {
   for (int i = 0; i < n_; ++i) e += 0.5 * s.v[i] * s.v[i] + g_ * (s.z[i] - 0.5 * d_);
   for (double xi : x) {
     if (xi > 0) e += 0.5 * k_over_m_ * xi * xi;
+  }
+  if (grounded_) {  // the plate's spring, 2k: (2k/m) x_w^2 / 2 = (k/m) X^2 / 4
+    grounded_state(now_ - gt0_, now_, gxr_.data(), gxdr_.data(), nullptr);
+    e += 0.25 * k_over_m_ * gxr_[0] * gxr_[0];
   }
   return e;
 }
