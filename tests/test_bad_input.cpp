@@ -90,11 +90,12 @@ const std::vector<BadInputRow> kRows = {
     {"sweep --engine hard --tc 1e-12 --T 1 --dry-run", 2, {"--tc"}, kAll},
     {"run --engine hard --tc 1e-9 --N 3 --T 1 --no-db", 0, {}, kAll, {"engine hard"}},
     // Drives: the plate's parameters belong to a plate, each given once, the sawtooth has no Gamma,
-    // a plate needs its amplitude and frequency, its period at least 10 tau_c, an engine that runs it.
+    // a plate needs its amplitude and frequency, its period at least 10 tau_c; the audit does not cover it.
     {"run --drive wobble --A 1 --omega 1 --engine reference --T 1 --db store.db", 2, {"--drive = 'wobble' is not a drive", "sine, sawtooth, quadratic"}, kAll},
     {"run --A 0.1 --T 1 --db store.db", 2, {"--A = 0.1 sets a vibrating plate", "--drive is thermal"}, kAll},
     {"sweep --Gamma 2 --T 1 --dry-run", 2, {"--Gamma = 2", "sets a vibrating plate"}, kAll},
-    {"run --drive sine --A 0.1 --omega 2 --T 1 --db store.db", 2, {"--drive = 'sine' is not run by the exact engine", "reference, reference-located"}, kAll},
+    {"run --drive sine --A 0.1 --omega 2 --N 2 --T 1 --no-db --audit", 2, {"--audit", "does not cover a vibrating plate"}, kAll},
+    {"run --drive quadratic --A 0.1 --omega 2 --N 2 --T 1 --no-db", 0, {}, kAll, {"drive: quadratic plate"}},
     {"run --drive sine --A 0.1 --Gamma 2 --omega 2 --engine reference --T 1 --db store.db", 2, {"--Gamma = 2", "one of --A, --Gamma"}, kAll},
     {"run --drive sine --A 0.1 --omega 2 --f 0.3 --engine reference --T 1 --db store.db", 2, {"--f = 0.3", "one of --omega, --f"}, kAll},
     {"run --drive sawtooth --Gamma 2 --omega 2 --engine reference --T 1 --db store.db", 2, {"--Gamma = 2", "sawtooth", "--A > 0"}, kAll},

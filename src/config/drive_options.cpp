@@ -16,14 +16,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 bool plate_drive(const RunSpec& s) { return s.drive.plate(); }
 
-// The engines that run a drive, for messages: "reference, reference-located, hard".
-std::string engines_running(DriveKind kind) {
-  std::string names;
-  for (const EngineInfo& e : engines())
-    if (runs_drive(e, kind)) names += (names.empty() ? "" : ", ") + std::string(e.name);
-  return names;
-}
-
 // An input that only sets another parameter (Gamma sets A, f sets omega): read and range-checked
 // here, used by resolve_drive.
 Definition alias(Parameter p) {
@@ -97,11 +89,6 @@ void resolve_drive(RunOptions& o, const std::map<std::string, RawValue>& raw) {
     return;
   }
   const EngineInfo& engine = engine_info(o.spec.engine.kind);
-  if (!runs_drive(engine, drive.kind)) {
-    const RawValue& v = raw.at("drive");
-    throw InputError(fmt::format("--drive = '{}'{} is not run by the {} engine; valid: --engine {} for this drive", v.text(),
-                                 from_where(v), engine.name, engines_running(drive.kind)));
-  }
 
   if (given("omega") && given("f"))
     throw InputError(fmt::format("--f = {}{}: the frequency is given twice, with --omega = {}; valid: one of --omega, --f",

@@ -26,17 +26,12 @@ std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& 
 }  // namespace
 
 const std::vector<EngineInfo>& engines() {
-  constexpr unsigned every = drive_bit(DriveKind::Thermal) | drive_bit(DriveKind::Sine) | drive_bit(DriveKind::Sawtooth) |
-                             drive_bit(DriveKind::Quadratic);
-  // The exact engine's grounded cluster needs a constant plate acceleration between events: the
-  // piecewise drives only.
-  constexpr unsigned piecewise = every & ~drive_bit(DriveKind::Sine);
-  //                                        kind                     name          hard   stepped fine  audit  drives
-  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, piecewise, make_exact},
-                                           {EngineKind::Reference, "reference", false, true, false, false, every, make_reference},
-                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, every,
+  //                                        kind                     name          hard   stepped fine  audit
+  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, make_exact},
+                                           {EngineKind::Reference, "reference", false, true, false, false, make_reference},
+                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, every, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, make_hard}};
   return all;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // What an engine is, written once: its name (on the command line, in stores and point keys),
 // whether it treats the spheres as hard, whether it steps in time (dt = tau_c / dt_factor, then part
-// of a run's identity), whether its clock is a FineTime, whether it has an audit, whether it runs
-// the vibrating plates, and how to make one. The layers ask this registry (by EngineKind) instead of comparing names; names appear only
+// of a run's identity), whether its clock is a FineTime, whether it has an audit, and how to make
+// one. Every engine runs every drive (model/plate_motion.hpp). The layers ask this registry (by EngineKind) instead of comparing names; names appear only
 // where text is read or written.
 #include <memory>
 #include <string>
@@ -13,7 +13,6 @@
 #include "engines/hard_sphere_options.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/floor.hpp"
-#include "model/plate_motion.hpp"
 
 namespace granchain {
 
@@ -35,12 +34,8 @@ struct EngineInfo {
   bool time_stepped;         // fixed steps dt = tau_c / dt_factor: dt_factor is part of a run's identity
   bool fine_clock;           // FineTime clock, resolving 2^-53 ulp(t) at time t; otherwise ulp(t)
   bool has_audit;            // --audit checks it
-  unsigned drives;           // the drives it runs (model/plate_motion.hpp), a bit per DriveKind (drive_bit)
   std::unique_ptr<Engine> (*make)(const EngineChoice&, const ChainParameters&, const ChainState&, FloorDrive*);
 };
-
-constexpr unsigned drive_bit(DriveKind kind) { return 1u << static_cast<unsigned>(kind); }
-inline bool runs_drive(const EngineInfo& e, DriveKind kind) { return (e.drives & drive_bit(kind)) != 0; }
 
 // Every engine, the default first.
 const std::vector<EngineInfo>& engines();

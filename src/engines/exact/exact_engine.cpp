@@ -92,10 +92,11 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
   floor_s_ = initial.z[0] - 0.5 * d_;
   plate_ = floor_ != nullptr ? floor_->plate() : nullptr;
   if (plate_ != nullptr) {
-    if (plate_->kind() == DriveKind::Sine) throw std::invalid_argument("ExactEngine: the sinusoidal plate is not run by the exact engine");
     if (audit_) throw std::invalid_argument("ExactEngine: the audit does not cover a vibrating plate");
+    sine_ = plate_->kind() == DriveKind::Sine;
     start_piece(now_);
-    for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_}) v->assign(2 * static_cast<std::size_t>(n_), 0.0);
+    for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_, &gc_re_, &gc_im_, &gP_re_, &gP_im_})
+      v->assign(2 * static_cast<std::size_t>(n_), 0.0);
     for (auto* v : {&gxr_, &gxdr_, &gv_}) v->assign(static_cast<std::size_t>(n_) + 1, 0.0);
   }
   const double surface = plate_ != nullptr ? plate_z(now_) : 0.0;
@@ -230,10 +231,11 @@ double ExactEngine::gap_at(int i, Time t) const {
 void ExactEngine::sync_gap(int i, Time t) { sync_gap_edges(i, t, edge_mode(lo_of_[i], true, t), edge_mode(i + 1, false, t)); }
 
 void ExactEngine::sync_gap_edges(int i, Time t, double ma, double mb) {
-  if (i == ground_gap()) {  // above the grounded cluster: the line bends with -(g + a_p)
-    const double tau = t - gaps_.t[i];
-    gaps_.s[i] += tau * (gaps_.c[i] + 0.5 * gp2_ * tau) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
-    gaps_.c[i] += gp2_ * tau;
+  if (i == ground_gap()) {  // above the grounded cluster: the line bends with -g and the plate's Z (gap_line)
+    const Time t_ref = gaps_.t[i];
+    const double tau = t - t_ref;
+    gaps_.s[i] += tau * (gaps_.c[i] - 0.5 * g_ * tau) - ground_zdev(t_ref, t) + (mb - gap_mb_[i]) - (ma - gap_ma_[i]);
+    gaps_.c[i] += -g_ * tau - (ground_zdot(t) - ground_zdot(t_ref));
     gaps_.t[i] = t;
     gap_ma_[i] = ma;
     gap_mb_[i] = mb;

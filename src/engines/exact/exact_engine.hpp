@@ -19,14 +19,14 @@
 // particles that move at speed 1 (gravity cancels in every gap). Absolute velocities enter only the
 // floor height and the reported state.
 //
-// A vibrating plate with a piecewise drive (the sawtooth, the quadratic arcs: model/plate_motion.hpp)
-// is one more event family of the same skeleton (exact_plate.cpp): particle 1 flying above it
-// meets the surface at the first root of a parabola minus the piece's polynomial, and the cluster
-// touching it ("grounded") is the symmetric half of a mirror cluster of twice its size (tables_[2n])
-// whose middle overlap, X = 2 x_w, is forced by 2 (g + a_p): on each piece (a_p constant) its
-// overlaps are the constant particular solution plus the mirror cluster's free symmetric modes,
-// searched as any cluster's. The piece's end is an event (the grounded cluster re-forms about the
-// new particular solution; the sawtooth's drop releases it).
+// A vibrating plate (model/plate_motion.hpp) is one more event family of the same skeleton
+// (exact_plate.cpp): particle 1 flying above it meets the surface at the first root of a parabola
+// minus the surface (a piece's polynomial, or a sinusoid), and the cluster touching it ("grounded")
+// is the symmetric half of a mirror cluster of twice its size (tables_[2n]) whose middle overlap,
+// X = 2 x_w, is forced by 2 (g + a_p): its overlaps are a particular solution (constant on each piece
+// of a piecewise drive; for the sine, a constant plus a sinusoid in every mode) plus the mirror
+// cluster's free symmetric modes, searched as any cluster's. A piece's end is an event (the
+// grounded cluster re-forms about the new particular solution; the sawtooth's drop releases it).
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -139,6 +139,8 @@ class ExactEngine final : public Engine {
     // Round-off of c0 (a difference of stored heights): values up to this (plus the mode part's
     // round-off) are zero as far as double precision can tell.
     double noise = 0;
+    // A sinusoidal plate: + sin_amp sin(sin_phase + sin_omega s) (0: none). It is in reach too.
+    double sin_amp = 0, sin_phase = 0, sin_omega = 0;
   };
 
   // --- clusters (indexed by their lowest particle lo) ---
@@ -179,7 +181,7 @@ class ExactEngine final : public Engine {
   double gap_line(int i, Time t) const {
     if (i != ground_gap()) return gaps_.line_at(i, t);
     const double tau = t - gaps_.t[i];
-    return gaps_.s[i] + tau * (gaps_.c[i] + 0.5 * gp2_ * tau);
+    return gaps_.s[i] + tau * (gaps_.c[i] - 0.5 * g_ * tau) - ground_zdev(gaps_.t[i], t);
   }
   void sync_gap(int i, Time t);    // move the reference of open gap i to t (clusters unchanged)
   void sync_gap_edges(int i, Time t, double m_a, double m_b);  // the same, given the edges' mode parts at t
@@ -246,10 +248,21 @@ class ExactEngine final : public Engine {
     bool drop = false;  // the motion jumps at `end` (the sawtooth)
   };
   double plate_z(Time t) const {
+    if (sine_) return plate_->amplitude() * std::sin(plate_phase(t));
     const double tau = t - piece_.t0;
     return piece_.z + tau * (piece_.v + 0.5 * piece_.a * tau);
   }
-  double plate_v(Time t) const { return piece_.v + piece_.a * (t - piece_.t0); }
+  double plate_v(Time t) const {
+    if (sine_) return plate_->amplitude() * plate_->omega() * std::cos(plate_phase(t));
+    return piece_.v + piece_.a * (t - piece_.t0);
+  }
+  // The sine's phase omega t + phi at a FineTime t (both parts of t multiplied).
+  double plate_phase(Time t) const { return plate_->omega() * t.value() + (plate_->phase() + plate_->omega() * t.low()); }
+  // The grounded cluster's top particle apart from its free modes: the plate plus the particular
+  // solution's top edge, Z(t) (sine: Im(W e^{i theta}) with W = A + sum_j top_j c_j). Its velocity,
+  // and Z(t) - Z(t_ref) - Z'(t_ref)(t - t_ref): what bends the line of the gap above the cluster.
+  double ground_zdot(Time t) const;
+  double ground_zdev(Time t_ref, Time t) const;
   void start_piece(Time t);  // the piece that begins at t (or contains it)
   int ground_gap() const { return grounded_ && hi_[0] + 1 < n_ ? hi_[0] : -1; }
   // xr, xdr: the n real overlaps of the grounded cluster 0..n-1 (X = 2 x_w, then pairs 0..n-2) and
@@ -279,8 +292,13 @@ class ExactEngine final : public Engine {
   int gn_ = 0;                  // particles of the grounded cluster
   Time gt0_ = 0;                // its formation
   double g_search_from_ = 0;    // local time from which its contact ends are searched
-  double gp2_ = 0;              // -(g + a_p): the line's curvature of the gap above it
-  std::vector<double> gy0_, gyd0_, gamp0_;  // its mirror modes at formation, amplitude bounds (2n - 1)
+  double gp2_ = 0;              // -(g + a_p): the line's curvature of the gap above it (piecewise drives)
+  bool sine_ = false;           // the plate is the sine
+  std::vector<double> gy0_, gyd0_, gamp0_;  // its free mirror modes at formation, amplitude bounds (2n - 1)
+  // The sine's particular solution: mode j is Im(c_j e^{i theta}), virtual overlap i Im(P_i e^{i theta});
+  // W of ground_zdot.
+  std::vector<double> gc_re_, gc_im_, gP_re_, gP_im_;
+  double gW_re_ = 0, gW_im_ = 0;
   mutable std::vector<double> gx_, gxd_, gy_, gyd_, gxr_, gxdr_, gv_;  // scratch
 
   // --- audit (exact_audit.cpp) ---

@@ -35,11 +35,29 @@ void ExactEngine::start_piece(Time t) {
   piece_.end = Time(plate_->next_switch(t.value()));
   piece_.drop = plate_->kind() == DriveKind::Sawtooth;
   gp2_ = -(g_ + piece_.a);
+  if (sine_) {  // one piece for ever; the sinusoid's own functions (plate_z, ground_zdev) serve
+    piece_.a = 0.0;
+    gp2_ = -g_;
+  }
+}
+
+double ExactEngine::ground_zdot(Time t) const {
+  if (!sine_) return plate_v(t);
+  const double th = plate_phase(t);
+  return plate_->omega() * (gW_re_ * std::cos(th) - gW_im_ * std::sin(th));  // omega Re(W e^{i theta})
+}
+
+double ExactEngine::ground_zdev(Time t_ref, Time t) const {
+  const double tau = t - t_ref;
+  if (!sine_) return 0.5 * piece_.a * tau * tau;
+  const double a = plate_phase(t_ref), b = plate_phase(t);
+  const double z_ref = gW_re_ * std::sin(a) + gW_im_ * std::cos(a), z = gW_re_ * std::sin(b) + gW_im_ * std::cos(b);
+  return z - z_ref - tau * plate_->omega() * (gW_re_ * std::cos(a) - gW_im_ * std::sin(a));
 }
 
 double ExactEngine::grounded_offset(int i) const {
   const int M = 2 * gn_ - 1;
-  return (g_ + piece_.a) / k_over_m_ * std::min(i + 1, M - i);
+  return (g_ + piece_.a) / k_over_m_ * std::min(i + 1, M - i);  // piece_.a = 0 for the sine (its a_p is in c_j)
 }
 
 void ExactEngine::form_grounded(int n, Time t, const double* xr, const double* xdr) {
@@ -63,6 +81,35 @@ void ExactEngine::form_grounded(int n, Time t, const double* xr, const double* x
   }
   tab.to_modes(xv, gy0_.data());
   tab.to_modes(xdv, gyd0_.data());
+  if (sine_) {
+    // The sine's particular solution: F(t) = Im(F e^{i theta}) on the middle overlap with
+    // F = -2 A omega^2, so mode j answers with c_j = S_mid,j F / (omega0_j^2 - omega^2 + 2 i beta_j omega).
+    const double w = plate_->omega(), F = -2.0 * plate_->amplitude() * w * w;
+    gW_re_ = plate_->amplitude();
+    gW_im_ = 0.0;
+    for (int j = 0; j < M; ++j) {
+      const ModeConstants& mc = tab.modes[j];
+      const double re = mc.omega0_sq - w * w, im = 2.0 * mc.beta * w, den = re * re + im * im;
+      const double f = tab.S[static_cast<std::size_t>(n - 1) * M + j] * F;
+      if (j % 2 == 1 || f == 0.0) {
+        gc_re_[j] = gc_im_[j] = 0.0;
+        continue;
+      }
+      if (!(den > 0)) throw UnphysicalStateError(t.value(), 1, n, "the plate drives a mode of the resting column at its resonance");
+      gc_re_[j] = f * re / den;
+      gc_im_[j] = -f * im / den;
+      gW_re_ += tab.top[j] * gc_re_[j];
+      gW_im_ += tab.top[j] * gc_im_[j];
+    }
+    tab.to_overlaps(gc_re_.data(), gP_re_.data());
+    tab.to_overlaps(gc_im_.data(), gP_im_.data());
+    // The free modes start from the state less the particular solution at t.
+    const double th = plate_phase(t), sn = std::sin(th), cs = std::cos(th);
+    for (int j = 0; j < M; ++j) {
+      gy0_[j] -= gc_re_[j] * sn + gc_im_[j] * cs;
+      gyd0_[j] -= w * (gc_re_[j] * cs - gc_im_[j] * sn);
+    }
+  }
   for (int j = 0; j < M; ++j) {
     if (j % 2 == 1) gy0_[j] = gyd0_[j] = 0.0;  // antisymmetric about the middle: absent by symmetry
     gamp0_[j] = tab.modes[j].energy_amplitude(gy0_[j], gyd0_[j]);
@@ -86,6 +133,13 @@ void ExactEngine::grounded_state(double tau, Time t, double* xr, double* xdr, do
   double* y = gy_.data();
   double* yd = gyd_.data();
   grounded_modes(tau, y, yd);
+  if (sine_) {  // plus the particular solution, Im(c e^{i theta}) and its rate
+    const double w = plate_->omega(), th = plate_phase(t), sn = std::sin(th), cs = std::cos(th);
+    for (int j = 0; j < tab.M; j += 2) {
+      y[j] += gc_re_[j] * sn + gc_im_[j] * cs;
+      yd[j] += w * (gc_re_[j] * cs - gc_im_[j] * sn);
+    }
+  }
   double* xv = gx_.data();
   double* xdv = gxd_.data();
   tab.to_overlaps(y, xv);
@@ -153,16 +207,39 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
       sum2 += amp2[j];
       sum_amp += amp;
     }
-    const double m2 = tab.s_max * sum2;
+    double m2 = tab.s_max * sum2;
     tab.to_overlaps(yn.data(), x);
     tab.to_overlaps(yn.data() + M, xd);
+    // The sine's particular solution of overlap i: Im(P_i e^{i theta}), derivative q Im(P_i (i w)^q e^{i theta}).
+    const double w = sine_ ? plate_->omega() : 0.0;
+    const double th = sine_ ? plate_phase(gt0_) + w * tau : 0.0, sn = std::sin(th), cs = std::cos(th);
+    const auto particular = [&](int i, int q) {  // q-th derivative
+      if (!sine_) return 0.0;
+      const double re = gP_re_[i] * cs - gP_im_[i] * sn, im = gP_re_[i] * sn + gP_im_[i] * cs;  // P e^{i theta}
+      const double wq = std::pow(w, q);
+      switch (q % 4) {  // Im(i^q P e^{i theta})
+        case 0: return wq * im;
+        case 1: return wq * re;
+        case 2: return -wq * im;
+        default: return -wq * re;
+      }
+    };
+    const auto particular_amp = [&](int i) { return sine_ ? std::hypot(gP_re_[i], gP_im_[i]) : 0.0; };
+    if (sine_) {
+      double pmax = 0.0;
+      for (int q = 0; q < n; ++q) pmax = std::max(pmax, particular_amp(n - 1 + q));
+      m2 += pmax * w * w;
+    }
     const auto limit = [&](int k) { return k - n == 0 ? 2.0 * d_ : d_; };
     const auto value = [&](int k) {
       const int i = virtual_index(k);
-      const double xi = x[i] + grounded_offset(i);
+      const double xi = x[i] + grounded_offset(i) + particular(i, 0);
       return k < n ? xi : limit(k) - xi;
     };
-    const auto rate = [&](int k) { return k < n ? xd[virtual_index(k)] : -xd[virtual_index(k)]; };
+    const auto rate = [&](int k) {
+      const int i = virtual_index(k);
+      return (k < n ? 1.0 : -1.0) * (xd[i] + particular(i, 1));
+    };
     const auto jet_of = [&](int k) {
       const int i = virtual_index(k);
       const double sign = k < n ? 1.0 : -1.0;
@@ -181,12 +258,13 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
         b2 += abs_row[j] * amp2[j];
         bP += abs_row[j] * ampP[j];
       }
-      jk.d[2] = sign * s2;
-      jk.d[3] = sign * s3;
-      jk.d[4] = sign * s4;
-      jk.d[5] = sign * s5;
-      jk.m2 = b2;
-      jk.mP = bP;
+      jk.d[2] = sign * (s2 + particular(i, 2));
+      jk.d[3] = sign * (s3 + particular(i, 3));
+      jk.d[4] = sign * (s4 + particular(i, 4));
+      jk.d[5] = sign * (s5 + particular(i, 5));
+      const double pa = particular_amp(i);
+      jk.m2 = b2 + pa * w * w;
+      jk.mP = bP + pa * std::pow(w, P);
       return jk;
     };
     const double skip = kResolutionSkip * tau_c_;
@@ -225,7 +303,10 @@ void ExactEngine::predict_grounded() {
   const int n = gn_;
   double reach = 0.0, offset_max = 0.0;
   for (double a : gamp0_) reach += a;
-  for (int q = 0; q < n; ++q) offset_max = std::max(offset_max, grounded_offset(n - 1 + q));
+  for (int q = 0; q < n; ++q) {
+    const double p = sine_ ? std::hypot(gP_re_[n - 1 + q], gP_im_[n - 1 + q]) : 0.0;
+    offset_max = std::max(offset_max, grounded_offset(n - 1 + q) + p);
+  }
   const bool watch = tables_[2 * n].s_max * reach + offset_max >= d_;
   const std::uint64_t steps_before = counters_.search_steps;
   const Root r = first_grounded_root(watch);
@@ -252,11 +333,23 @@ void ExactEngine::predict_ground_gap(int i) {
   double reach = cluster_size(b) >= 2 ? edge_reach(b, false, 0.0) : 0.0;
   reach = grounded_reach_top(reach);
   EdgeFunction fn;
-  fn.reach = reach;
   fn.c1 = gaps_.c[i];
   fn.p2 = gp2_;
   fn.c0 = gaps_.s[i] - gap_mb_[i] + gap_ma_[i];
   fn.noise = 8 * std::numeric_limits<double>::epsilon() * (std::abs(gaps_.s[i]) + std::abs(gap_mb_[i]) + std::abs(gap_ma_[i]));
+  if (sine_) {
+    // f(s) = c0 + c1 s - g s^2/2 - [Z(t+s) - Z(t) - Z'(t) s] + modes: Z(t) and Z'(t) into c0 and c1,
+    // -Z(t+s) = -|W| sin(theta + arg W + omega s) a sinusoid term.
+    const double th = plate_phase(t), amp = std::hypot(gW_re_, gW_im_);
+    fn.c0 += gW_re_ * std::sin(th) + gW_im_ * std::cos(th);
+    fn.c1 += ground_zdot(t);
+    fn.sin_amp = -amp;
+    fn.sin_phase = th + std::atan2(gW_im_, gW_re_);
+    fn.sin_omega = plate_->omega();
+    fn.noise += 8 * std::numeric_limits<double>::epsilon() * amp;
+    reach += amp;
+  }
+  fn.reach = reach;
   fn.modes_nonnegative = false;
   const double clear = bound_clear(fn.c0, fn.c1, fn.p2, reach, false);
   if (bound_excludes(clear, horizon - t)) {
@@ -295,8 +388,8 @@ void ExactEngine::plate_contact(Time t, EventSink& sink) {
     xr[q] = x[q - 1];
     xdr[q] = xd[q - 1];
   }
-  if (hi + 1 < n_) gaps_.c[hi] += V - vp;  // the lower "centre of mass" is now the plate
   form_grounded(n, t, xr, xdr);
+  if (hi + 1 < n_) gaps_.c[hi] += V - ground_zdot(t);  // the lower "centre of mass" is now the plate
   if (hi + 1 < n_) rebase_gap(hi, t);
   sink.on_event({EventKind::FloorContact, t.value(), 0, std::abs(vp - v1), t.low()});
   predict_grounded();
@@ -315,7 +408,7 @@ void ExactEngine::plate_release(Time t, double tau, EventSink& sink, bool predic
   for (int q = 0; q < n; ++q) V += v[q];
   V /= n;
   const double vp = plate_v(t), zp = plate_z(t);
-  if (n < n_) gaps_.c[n - 1] += vp - V;
+  if (n < n_) gaps_.c[n - 1] += ground_zdot(t) - V;
   grounded_ = false;
   form_cluster(0, n - 1, t, xr + 1, xdr + 1, V);
   floor_s_ = zp - 0.5 * std::max(xr[0], 0.0);  // z_1 - d/2 = z_p - x_w
@@ -338,14 +431,13 @@ void ExactEngine::grounded_split(int pair, Time t, double tau, EventSink& sink) 
   double Vu = 0.0;
   for (int q = r + 1; q < n; ++q) Vu += v[q];
   Vu /= n - 1 - r;
-  const double vp = plate_v(t);
   const double speed = std::abs(xdr[r + 1]);
-  if (n < n_) gaps_.c[n - 1] += vp - Vu;  // now above a free cluster
+  if (n < n_) gaps_.c[n - 1] += ground_zdot(t) - Vu;  // now above a free cluster
   form_grounded(r + 1, t, xr, xdr);
   form_cluster(r + 1, n - 1, t, xr + r + 2, xdr + r + 2, Vu);
   gaps_.s[r] = 0.0;
   gaps_.t[r] = t;
-  gaps_.c[r] = Vu - vp;
+  gaps_.c[r] = Vu - ground_zdot(t);
   rebase_gap(r, t);
   if (n < n_) rebase_gap(n - 1, t);
   ++counters_.contact_ends;
@@ -379,10 +471,10 @@ void ExactEngine::grounded_merge(int pair, Time t, EventSink& sink) {
     xr[n + 1 + q] = x[q];
     xdr[n + 1 + q] = xd[q];
   }
-  if (hb + 1 < n_) gaps_.c[hb] += Vb - plate_v(t);  // now above the grounded cluster
   set_slot(cluster_slot(b), kInf, SlotKind::None, b);
   set_slot(gap_slot(pair), kInf, SlotKind::None, pair);
   form_grounded(n + nb, t, xr, xdr);
+  if (hb + 1 < n_) gaps_.c[hb] += Vb - ground_zdot(t);  // now above the grounded cluster
   const double speed = std::abs(rate);
   if (speed <= 1e-13 * scale) {  // a grazing contact (merge): its end searched from 1e-6 tau_c on
     g_search_from_ = kResolutionSkip * tau_c_;

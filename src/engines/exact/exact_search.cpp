@@ -44,7 +44,7 @@ double ExactEngine::bound_clear(double c0, double c1, double p2, double reach, b
 }
 
 ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_max, double sigma0) const {
-  if (fn.terms == 0) {
+  if (fn.terms == 0 && fn.sin_amp == 0) {
     // (p2 > 0 only above a plate whose deceleration exceeds g: first_root_any takes either sign)
     const double s = plate_flight::first_root_any(fn.c0, fn.c1, fn.p2);
     ++counters_.closed_form_predictions;
@@ -61,6 +61,18 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
     jet.d[2] = fn.p2;
     for (int n = 3; n < P; ++n) jet.d[n] = 0.0;
     jet.p2 = fn.p2;
+    if (fn.sin_amp != 0) {  // a sin(phase + w s): derivative q is a w^q sin(phase + w s + q pi / 2)
+      const double ph = fn.sin_phase + fn.sin_omega * sigma, sn = std::sin(ph), cs = std::cos(ph);
+      double wq = fn.sin_amp;
+      for (int q = 0; q < P; ++q) {
+        const double v = q % 4 == 0 ? sn : q % 4 == 1 ? cs : q % 4 == 2 ? -sn : -cs;
+        jet.d[q] += wq * v;
+        wq *= fn.sin_omega;
+      }
+      const double a = std::abs(fn.sin_amp);
+      jet.m2 += a * fn.sin_omega * fn.sin_omega;
+      jet.mP += a * std::pow(fn.sin_omega, P);
+    }
     for (int k = 0; k < fn.terms; ++k) {
       const EdgeTerm& term = fn.term[k];
       const double tau = term.tau0 + sigma;
@@ -391,7 +403,11 @@ void ExactEngine::predict_floor() {
              (std::abs(floor_s_) + std::abs(floor_u_) + std::abs(tau * (V0_[0] - 0.5 * g_ * tau)));
   Time horizon = slot_time(cluster_slot(0));
   bool switch_first = false;  // the piece ends before cluster 0's own next event
-  if (plate_ != nullptr) {
+  if (sine_) {  // minus A sin(theta(t) + omega s): a sinusoid term (bound by its amplitude)
+    fn.sin_amp = -plate_->amplitude();
+    fn.sin_phase = plate_phase(t);
+    fn.sin_omega = plate_->omega();
+  } else if (plate_ != nullptr) {
     const double zp = plate_z(t);
     fn.c0 -= zp;
     fn.c1 -= plate_v(t);
@@ -406,11 +422,13 @@ void ExactEngine::predict_floor() {
     if (switch_first) set_slot(floor_slot(), piece_.end, SlotKind::PlateSwitch, 0);
     else clear_slot_before(floor_slot(), horizon, 0);
   };
-  fn.modes_nonnegative = !has_holds(0);
+  fn.modes_nonnegative = !has_holds(0) && !sine_;
   const double sigma_max = horizon - t;
   double clear = 0.0;
+  fn.reach = std::abs(fn.sin_amp);
+  if (sine_) clear = bound_clear(fn.c0, fn.c1, fn.p2, fn.reach, false);
   if (cluster_size(0) >= 2) {
-    fn.reach = edge_reach(0, false, 0.0);
+    fn.reach = edge_reach(0, false, fn.reach);
     clear = bound_clear(fn.c0, fn.c1, fn.p2, fn.reach, fn.modes_nonnegative);
     if (bound_excludes(clear, sigma_max)) {
       no_event();
