@@ -9,6 +9,7 @@
 //   build/bench/engine_speed --quick    # every N = 25 reference time extrapolated from a short run
 //   build/bench/engine_speed --skip-large  # without the settled columns (about 4 minutes)
 //   build/bench/engine_speed --free-space  # also free-space collapses at N = 25 (up to 20 minutes)
+//   build/bench/engine_speed --plates      # also N = 10 columns on each vibrating plate (about 1 minute)
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -128,6 +129,27 @@ LargeTiming time_large_column(const LargeColumn& w, int N, double e, double sett
 
 }  // namespace
 
+// A column of N = 10 on a vibrating plate (omega = 5), through run_driven_column as `granchain run`.
+Timing time_plate_run(const DriveSpec& drive, double k, EngineKind engine, double T, std::uint64_t seed) {
+  RunSpec spec;
+  spec.params = ChainParameters{.N = 10, .k = k, .e = 0.5};
+  spec.drive = drive;
+  spec.engine.kind = engine;
+  spec.T = T;
+  spec.transient = 0.1 * T;
+  spec.seed = seed;
+  const auto t0 = std::chrono::steady_clock::now();
+  const RunResult r = run_driven_column(spec, {}, 1.0);
+  Timing out;
+  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.simulated = spec.T + spec.transient;
+  out.events = r.events;
+  out.steps = r.steps;
+  out.n_coll = r.n_coll.value;
+  out.n_coll_err = r.n_coll.error;
+  return out;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"granchain engine benchmark: exact event-driven vs reference Runge-Kutta (N = 25 driven column)"};
   bool quick = false;
@@ -137,7 +159,10 @@ int main(int argc, char** argv) {
   app.add_option("--short-T", short_T, "window of the short reference runs used for extrapolation (> 0)");
   app.add_option("--seed", seed, "base seed");
   int repeat = 3;
-  bool skip_large = false, free_space = false;
+  bool skip_large = false, free_space = false, plates = false;
+  app.add_flag("--plates", plates,
+               "also time N = 10, e = 0.5 columns on each vibrating plate (Gamma = 2 or A = 0.1, omega = 5) at k = 1e5 "
+               "and 1e7 (about 1 minute)");
   app.add_flag("--free-space", free_space,
                "also time free-space collapses, N = 25, e = 0.3, 200 launches at k = 1e8 and 1e10 (exact engine; "
                "up to 20 minutes)");
@@ -229,6 +254,29 @@ int main(int argc, char** argv) {
                  1e6 * r.wall_seconds / static_cast<double>(r.collisions), r.n_tot_mean, r.held_contacts);
       std::fflush(stdout);
     }
+  }
+  if (plates) {
+    // The reference at k = 1e7 from a window of 30, scaled to the exact engine's 300.
+    fmt::print("\nN = 10 columns on vibrating plates, e = 0.5, omega = 5, T = 300 (transient 30), seed {}; wall seconds, fastest of {}\n",
+               seed, repeat);
+    fmt::print("{:>10} {:>6} | {:>15} {:>9} {:>9} | {:>15} {:>9} {:>12} | {:>8}\n", "drive", "k", "n_coll (exact)", "exact s",
+               "ns/event", "n_coll (ref)", "ref s", "ref source", "ratio");
+    for (const DriveSpec& drive : {DriveSpec{DriveKind::Sine, 2.0 / 25.0, 5.0}, DriveSpec{DriveKind::Quadratic, 2.0 / (gamma_factor(DriveKind::Quadratic) * 25.0), 5.0},
+                                   DriveSpec{DriveKind::Sawtooth, 0.1, 5.0}}) {
+      for (double k : {1e5, 1e7}) {
+        const Timing ex = fastest([&] { return time_plate_run(drive, k, EngineKind::Exact, 300.0, seed); });
+        const double ref_T = k > 1e5 ? 30.0 : 300.0;
+        const Timing ref = fastest([&] { return time_plate_run(drive, k, EngineKind::ReferenceLocated, ref_T, seed); });
+        const double ref_wall = ref.wall * ex.simulated / ref.simulated;
+        fmt::print("{:>10} {:>6.0e} | {:>8.3f} ± {:<5.3f} {:>9.3f} {:>9.0f} | {:>8.3f} ± {:<5.3f} {:>9.2f} {:>12} | {:>7.1f}x\n",
+                   drive_name(drive.kind), k, ex.n_coll, ex.n_coll_err, ex.wall, 1e9 * ex.wall / static_cast<double>(ex.events),
+                   ref.n_coll, ref.n_coll_err, ref_wall, ref_T < 300 ? fmt::format("T={} x{:.0f}", ref_T, ex.simulated / ref.simulated) : "measured",
+                   ref_wall / ex.wall);
+        std::fflush(stdout);
+      }
+    }
+    fmt::print("ref: reference-located (each step cut at contact switches and the plate's switching instants); ratio: ref s / "
+               "exact s; n_coll (ref) is over its own window.\n");
   }
   if (skip_large) return 0;
   // Settled columns: one timing each (the transient alone takes minutes at k = 1e10). The N = 150
