@@ -127,8 +127,15 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   StoreAnalysis a;
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
+  std::vector<analysis::ExcludedRun> on_plates;  // left out, each named (a family is a drive's too)
   for (const StoredRun& row : read_runs(db, sel)) {
     if (row.setup != "driven_column") continue;
+    if (row.spec.drive.plate()) {
+      on_plates.push_back({row.id, row.spec.engine.kind, row.spec.params.N, row.spec.params.kT0, row.spec.params.e, row.spec.params.k,
+                           fmt::format("driven by a {} plate: the regimes, critical values and exponents are those of the thermal "
+                                       "floor's column, whose runs alone enter them", drive_name(row.spec.drive.kind))});
+      continue;
+    }
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
     analysis::NcollRun run;
@@ -147,6 +154,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   }
   a.runs = runs.size();
   a.report = analysis::analyze_runs(runs, k_min);
+  a.report.excluded.insert(a.report.excluded.end(), on_plates.begin(), on_plates.end());
   std::set<std::int64_t> left_out;
   for (const auto& x : a.report.excluded) left_out.insert(x.run_id);
   a.condensation = condensation_by_family(db, sel, left_out);
