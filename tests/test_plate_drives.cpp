@@ -10,7 +10,11 @@
 
 #include "engines/engine_registry.hpp"
 #include "engines/runge_kutta_engine.hpp"
+#include "reproduce/store_analysis.hpp"
 #include "simulation/driven_run.hpp"
+#include "store/results_store.hpp"
+#include "store/store_export.hpp"
+#include "temp_dir.hpp"
 #include "model/chain_parameters.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
@@ -298,4 +302,37 @@ TEST(PlateDrives, ExactAgreesWithTheReferenceOnEveryPlate) {
         << drive_name(kind) << ": exact " << exact.n_coll.value << " reference " << ref.n_coll.value;
     EXPECT_GT(exact.floor_hits, 100u) << drive_name(kind);
   }
+}
+
+// The analysis's families are per drive: a store holding the thermal floor's run and a plate's run
+// at the same (engine, N, T0, e, k) analyses them as two families, each with its own n_coll, and
+// the profiles of the one never enter the other's condensation check.
+TEST(PlateDrives, AnAnalysisKeepsEachDriveApart) {
+  TempDir dir;
+  const std::string db = dir.file("s.db");
+  RunSpec spec;
+  spec.params = {.N = 3, .k = 1e4, .e = 0.5};
+  spec.T = 50;
+  spec.transient = 5;
+  RunResult thermal, plate;
+  {
+    ResultsStore store(db);
+    thermal = run_driven_column(spec);
+    store.insert_run(thermal);
+    spec.drive = {DriveKind::Sine, 0.08, 5.0};
+    plate = run_driven_column(spec);
+    store.insert_run(plate);
+  }
+  ASSERT_NE(thermal.n_coll.value, plate.n_coll.value);
+  const StoreAnalysis a = analyze_store(db, ExportSelection{}, 1e3);
+  ASSERT_EQ(a.report.families.size(), 2u);
+  for (const auto& f : a.report.families) {
+    ASSERT_EQ(f.curves.size(), 1u);
+    ASSERT_EQ(f.curves[0].n_coll_of_k.size(), 1u);
+    EXPECT_EQ(f.curves[0].n_coll_of_k[0].y, f.drive.plate() ? plate.n_coll.value : thermal.n_coll.value);
+  }
+  EXPECT_TRUE(a.report.excluded.empty());
+  EXPECT_EQ(a.json.at("families").size(), 2u);
+  // Each family's condensation check reads its own run's profiles: one per (drive, e) here.
+  EXPECT_EQ(a.condensation.size(), 2u);
 }

@@ -20,8 +20,8 @@ bool table1_e(double e) {
 }  // namespace
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
-  // (engine, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
-  using Key = std::tuple<EngineKind, int, double>;
+  // (engine, drive, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
+  using Key = std::tuple<EngineKind, DriveSpec, int, double>;
   using Runs = std::vector<std::pair<double, double>>;
   std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
@@ -45,7 +45,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   }
   // Results identical to the last bit at one point: not two independent samples, whatever their
   // seeds say (zero scatter); the first is kept.
-  std::map<std::tuple<EngineKind, int, double, double, double, double, double>, std::size_t> first_result;
+  std::map<std::tuple<EngineKind, DriveSpec, int, double, double, double, double, double>, std::size_t> first_result;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
     std::string why = unusable(r);
@@ -53,22 +53,22 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",
                         runs[kept.at(r.trajectory)].run_id, r.T == runs[kept.at(r.trajectory)].T ? "" : ", a shorter window");
     if (why.empty()) {
-      const auto [at, fresh] = first_result.emplace(std::make_tuple(r.engine, r.N, r.kT0, r.e, r.k, r.n_coll, r.n_coll_err), i);
+      const auto [at, fresh] = first_result.emplace(std::make_tuple(r.engine, r.drive, r.N, r.kT0, r.e, r.k, r.n_coll, r.n_coll_err), i);
       if (!fresh)
         why = fmt::format("n_coll and its error are those of run {} to the last bit (zero scatter): not an independent sample",
                           runs[at->second].run_id);
     }
     if (!why.empty()) {
-      report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why});
+      report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why, r.drive});
       continue;
     }
-    groups[{r.engine, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err});
-    if (!r.stationary) unsettled[{r.engine, r.N, r.kT0}][r.e].push_back(r.k);
+    groups[{r.engine, r.drive, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err});
+    if (!r.stationary) unsettled[{r.engine, r.drive, r.N, r.kT0}][r.e].push_back(r.k);
   }
   report.k_min = k_min;
   for (const auto& [key, by_e] : groups) {
     FamilyAnalysis fam;
-    std::tie(fam.engine, fam.N, fam.kT0) = key;
+    std::tie(fam.engine, fam.drive, fam.N, fam.kT0) = key;
     std::vector<Curve> all_curves;
     std::vector<double> es;
     std::vector<Regime> regimes;
@@ -132,12 +132,12 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     }
     report.families.push_back(std::move(fam));
   }
-  // Across N for each (engine, kT0).
-  std::map<std::pair<EngineKind, double>, std::vector<const FamilyAnalysis*>> by_temperature;
-  for (const auto& f : report.families) by_temperature[{f.engine, f.kT0}].push_back(&f);
+  // Across N for each (engine, drive, kT0).
+  std::map<std::tuple<EngineKind, DriveSpec, double>, std::vector<const FamilyAnalysis*>> by_temperature;
+  for (const auto& f : report.families) by_temperature[{f.engine, f.drive, f.kT0}].push_back(&f);
   for (const auto& [key, fams] : by_temperature) {
     AcrossN a;
-    std::tie(a.engine, a.kT0) = key;
+    std::tie(a.engine, a.drive, a.kT0) = key;
     // (1 - e_c) = A/N over the N where a critical value was found (at least two).
     // A value located only to the grid (CriticalValue::grid_rounded): on fig6's grid
     // e = 1 - c/N every N's bracket is a step in c = N (1 - e), the same step at every N, so the

@@ -9,6 +9,7 @@
 
 #include "analysis/blocking.hpp"
 #include "engines/engine_registry.hpp"
+#include "model/plate_motion.hpp"
 #include "analysis/collapse_regimes.hpp"
 #include "analysis/critical_restitution.hpp"
 
@@ -26,6 +27,7 @@ struct NcollRun {
   // share their start (whatever their window or sampling), so they are one sample, not replicas.
   std::string trajectory;
   double T = 0;  // the measuring window: of one trajectory, the longest run is kept
+  DriveSpec drive;  // the thermal floor or a plate: each drive its own families
 };
 
 // A run the analysis could not use, and why.
@@ -35,6 +37,7 @@ struct ExcludedRun {
   int N = 0;
   double kT0 = 1, e = 0, k = 0;
   std::string reason;
+  DriveSpec drive;
 };
 
 struct CurveAnalysis {  // one (engine, N, kT0, e)
@@ -45,8 +48,9 @@ struct CurveAnalysis {  // one (engine, N, kT0, e)
   Classification c;
 };
 
-struct FamilyAnalysis {  // one (engine, N, kT0)
+struct FamilyAnalysis {  // one (engine, drive, N, kT0)
   EngineKind engine = EngineKind::Exact;
+  DriveSpec drive;
   int N = 0;
   double kT0 = 1;
   std::vector<CurveAnalysis> curves;  // e ascending
@@ -66,8 +70,9 @@ struct FamilyAnalysis {  // one (engine, N, kT0)
   double replicas_worst_e = 0, replicas_worst_k = 0;
 };
 
-struct AcrossN {  // one (engine, kT0), over N
+struct AcrossN {  // one (engine, drive, kT0), over N
   EngineKind engine = EngineKind::Exact;
+  DriveSpec drive;
   double kT0 = 1;
   bool has_A1 = false, has_A2 = false, has_alpha_fit = false;
   InverseNFit A1, A2;  // e_c1 (b -> 0), e_c2 (convex by 2 errors / not: the bracket)

@@ -1,5 +1,7 @@
 #include "model/plate_motion.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -41,6 +43,11 @@ std::string drive_name_list() {
   std::string s;
   for (const auto& d : kDrives) s += (s.empty() ? "" : ", ") + std::string(d.name);
   return s;
+}
+
+std::string drive_label(const DriveSpec& drive) {
+  if (!drive.plate()) return "";
+  return fmt::format(", {} plate A = {:g}, omega = {:g}", drive_name(drive.kind), drive.A, drive.omega);
 }
 
 double gamma_factor(DriveKind kind) {

@@ -21,6 +21,7 @@
 //              sign at c = 0 and 1/2                                  peak acceleration 8 A omega^2 / pi^2
 // Gamma = peak acceleration / g, the control parameter of both papers (a sphere resting on the
 // plate stays on it for Gamma <= 1).
+#include <compare>
 #include <string>
 #include <string_view>
 
@@ -42,7 +43,13 @@ struct DriveSpec {
   double A = 0.0;
   double omega = 0.0;
   bool plate() const { return kind != DriveKind::Thermal; }
+  auto operator<=>(const DriveSpec&) const = default;  // families of an analysis are per drive
+  bool operator==(const DriveSpec&) const = default;
 };
+
+// "" for the thermal floor, else ", sine plate A = 0.08, omega = 5": what names a drive beside a
+// family's engine, N and T0 in reports.
+std::string drive_label(const DriveSpec& drive);
 
 // Peak plate acceleration over A omega^2 (1 for the sine, 8 / pi^2 for the quadratic arcs,
 // infinite for the sawtooth's drop): Gamma = gamma_factor * A omega^2 / g.

@@ -66,7 +66,7 @@ std::string bracket_text(const analysis::CriticalValue& c) {
 // interior hot layer above it, analysis/condensation.hpp), within the critical region (c <= 5).
 std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f) {
   std::vector<double> out;
-  const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+  const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
   if (fc == a.condensation.end()) return out;
   for (const auto& [e, c] : fc->second)
     if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= kCriticalC.front() + 1e-9) out.push_back(e);

@@ -31,7 +31,7 @@ std::string fig5_table(const StoreAnalysis& a) {
   md += fmt::format("| local α per interval of k, mean over e = 0.1 … 0.4 (ᾱ averages these) | {} | – |\n",
                     local_exponents_text(f.local_alpha_bar));
   std::string partial, whole;
-  const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+  const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
   if (fc != a.condensation.end())
     for (const auto& [e, c] : fc->second) {
       if (!c.check.condensed || e <= 0.7) continue;

@@ -33,7 +33,7 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       continue;
     const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{row.spec.engine.kind, row.spec.params.N, row.spec.params.kT0};
+    const FamilyKey key{row.spec.engine.kind, row.spec.drive, row.spec.params.N, row.spec.params.kT0};
     const double e = row.spec.params.e, k = row.spec.params.k;
     auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);
@@ -48,15 +48,15 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
   for (const auto& [key, by_e] : acc)
     for (const auto& [e, by_k] : by_e) {
       const auto& [k, particles] = *by_k.rbegin();  // the largest k
-      if (static_cast<int>(particles.size()) != std::get<1>(key) || particles.size() < 3) continue;
+      if (static_cast<int>(particles.size()) != std::get<2>(key) || particles.size() < 3) continue;
       std::vector<analysis::ParticleValue> K, sigma;
       for (const auto& [i, a] : particles) {
         K.push_back({a[1] / a[0], 1.0 / std::sqrt(a[0])});
         sigma.push_back({a[3] / a[2], 1.0 / std::sqrt(a[2])});
       }
-      std::vector<double> sigma0;
+      std::vector<double> sigma0;  // the elastic column on the thermal floor: none for a plate
       try {
-        sigma0 = elastic_column_equilibrium(params.at({std::get<1>(key), std::get<2>(key), k})).z_std;
+        if (!std::get<1>(key).plate()) sigma0 = elastic_column_equilibrium(params.at({std::get<2>(key), std::get<3>(key), k})).z_std;
       } catch (const std::exception&) {
         sigma0.clear();  // no closed form for this column: the sigma ratio is left out
       }
@@ -121,25 +121,30 @@ std::string plus_minus(double v, double e, int digits) {
   return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
 }
 
+namespace {
+
+// drive, plate_A, plate_omega of a family, as a run's JSON has them (null under the thermal floor).
+void put_drive(nlohmann::json& j, const DriveSpec& d) {
+  j["drive"] = d.plate() ? nlohmann::json(drive_name(d.kind)) : nlohmann::json(nullptr);
+  j["plate_A"] = d.plate() ? nlohmann::json(d.A) : nlohmann::json(nullptr);
+  j["plate_omega"] = d.plate() ? nlohmann::json(d.omega) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min) {
   ExportSelection sel = selection;
   sel.table = ExportTable::Runs;
   StoreAnalysis a;
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
-  std::vector<analysis::ExcludedRun> on_plates;  // left out, each named (a family is a drive's too)
   for (const StoredRun& row : read_runs(db, sel)) {
     if (row.setup != "driven_column") continue;
-    if (row.spec.drive.plate()) {
-      on_plates.push_back({row.id, row.spec.engine.kind, row.spec.params.N, row.spec.params.kT0, row.spec.params.e, row.spec.params.k,
-                           fmt::format("driven by a {} plate: the regimes, critical values and exponents are those of the thermal "
-                                       "floor's column, whose runs alone enter them", drive_name(row.spec.drive.kind))});
-      continue;
-    }
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
     analysis::NcollRun run;
     run.engine = row.spec.engine.kind;
+    run.drive = row.spec.drive;
     run.N = row.spec.params.N;
     run.kT0 = row.spec.params.kT0;
     run.e = row.spec.params.e;
@@ -154,7 +159,6 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   }
   a.runs = runs.size();
   a.report = analysis::analyze_runs(runs, k_min);
-  a.report.excluded.insert(a.report.excluded.end(), on_plates.begin(), on_plates.end());
   std::set<std::int64_t> left_out;
   for (const auto& x : a.report.excluded) left_out.insert(x.run_id);
   a.condensation = condensation_by_family(db, sel, left_out);
@@ -177,7 +181,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
         // The local exponent per interval of k beside the global alpha: how the slope drifts.
         cj["local_exponents"] = local_exponents_json(analysis::local_exponents(c.n_coll_of_k));
       }
-      const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+      const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
       if (fc != a.condensation.end() && fc->second.count(c.e)) {
         const Condensation& pc = fc->second.at(c.e);
         cj["partial_condensation"] = {{"k", pc.k}, {"condensed", pc.check.condensed},
@@ -209,11 +213,14 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                              {"replica_check", replica_check_json(f)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
+    put_drive(j["families"].back(), f.drive);
   }
   j["excluded"] = nlohmann::json::array();
-  for (const auto& x : a.report.excluded)
+  for (const auto& x : a.report.excluded) {
     j["excluded"].push_back({{"run_id", x.run_id}, {"engine", engine_name(x.engine)}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
                              {"k", std::isfinite(x.k) ? nlohmann::json(x.k) : nlohmann::json(nullptr)}, {"reason", x.reason}});
+    put_drive(j["excluded"].back(), x.drive);
+  }
   for (const auto& a : a.report.across) {
     auto inv = [](bool has, const analysis::InverseNFit& f) {
       return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
@@ -225,21 +232,23 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                                                                                    {"intercept", a.alpha_fit.intercept},
                                                                                    {"intercept_err", a.alpha_fit.intercept_error}}
                                                                   : nlohmann::json(nullptr)}});
+    put_drive(j["across_N"].back(), a.drive);
   }
   return a;
 }
 
 std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
   if (excluded.empty()) return "";
-  // Runs left out for one reason at one (engine, N, T0, e, k), named together.
-  std::map<std::tuple<std::string, EngineKind, int, double, double, double>, std::vector<std::int64_t>> groups;
-  for (const auto& x : excluded) groups[{x.reason, x.engine, x.N, x.kT0, x.e, x.k}].push_back(x.run_id);
+  // Runs left out for one reason at one (engine, drive, N, T0, e, k), named together.
+  std::map<std::tuple<std::string, EngineKind, int, double, double, double, DriveSpec>, std::vector<std::int64_t>> groups;
+  for (const auto& x : excluded) groups[{x.reason, x.engine, x.N, x.kT0, x.e, x.k, x.drive}].push_back(x.run_id);
   std::string out = fmt::format("left out of the analysis: {} run{}\n", excluded.size(), excluded.size() == 1 ? "" : "s");
   for (const auto& [g, ids] : groups) {
     std::string list;
     for (std::int64_t id : ids) list += fmt::format("{}{}", list.empty() ? "" : ", ", id);
-    out += fmt::format("  engine {}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", engine_name(std::get<1>(g)), std::get<2>(g),
-                       std::get<3>(g), std::get<4>(g), std::get<5>(g), ids.size() == 1 ? "" : "s", list, std::get<0>(g));
+    out += fmt::format("  engine {}{}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", engine_name(std::get<1>(g)),
+                       drive_label(std::get<6>(g)), std::get<2>(g), std::get<3>(g), std::get<4>(g), std::get<5>(g),
+                       ids.size() == 1 ? "" : "s", list, std::get<0>(g));
   }
   return out;
 }
@@ -254,10 +263,10 @@ std::string analysis_text(const StoreAnalysis& a) {
   out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));
   out += excluded_text(a.report.excluded);
   for (const auto& f : a.report.families) {
-    out += fmt::format("\nengine {}, N = {}, T0 = {:g}\n", engine_name(f.engine), f.N, f.kT0);
+    out += fmt::format("\nengine {}{}, N = {}, T0 = {:g}\n", engine_name(f.engine), drive_label(f.drive), f.N, f.kT0);
     out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
                "K_i inversion (at largest k)");
-    const auto fc = a.condensation.find({f.engine, f.N, f.kT0});
+    const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
     auto inversion = [&](double e) -> std::string {
       if (fc == a.condensation.end() || !fc->second.count(e)) return "-";
       const auto& ch = fc->second.at(e).check;
@@ -323,7 +332,7 @@ std::string analysis_text(const StoreAnalysis& a) {
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit)) continue;
-    out += fmt::format("\nacross N (engine {}, T0 = {:g}):", engine_name(a.engine), a.kT0);
+    out += fmt::format("\nacross N (engine {}{}, T0 = {:g}):", engine_name(a.engine), drive_label(a.drive), a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
     if (a.has_A1_boundary)
@@ -340,11 +349,15 @@ std::string analysis_text(const StoreAnalysis& a) {
 
 namespace {
 
-// The file name, without extension, of one (engine, N, T0)'s panels; plots/ncoll_panels.py takes it
+// The file name, without extension, of one (engine, drive, N, T0)'s panels; plots/ncoll_panels.py takes it
 // from the JSON ("stem").
 std::string panel_stem(const std::string& prefix, const nlohmann::json& family) {
-  return fmt::format("{}_N{}_T0{:g}_{}", prefix, family.at("N").get<int>(), family.at("T0").get<double>(),
-                     family.at("engine").get<std::string>());
+  std::string stem = fmt::format("{}_N{}_T0{:g}_{}", prefix, family.at("N").get<int>(), family.at("T0").get<double>(),
+                                 family.at("engine").get<std::string>());
+  if (family.contains("drive") && family.at("drive").is_string())
+    stem += fmt::format("_{}_A{:g}_w{:g}", family.at("drive").get<std::string>(), family.at("plate_A").get<double>(),
+                        family.at("plate_omega").get<double>());
+  return stem;
 }
 
 }  // namespace

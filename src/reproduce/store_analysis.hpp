@@ -23,7 +23,7 @@ struct Condensation {
   std::vector<analysis::ParticleValue> K, sigma;
   std::vector<double> sigma0;
 };
-using FamilyKey = std::tuple<EngineKind, int, double>;  // engine, N, kT0
+using FamilyKey = std::tuple<EngineKind, DriveSpec, int, double>;  // engine, drive, N, kT0
 
 struct StoreAnalysis {
   std::size_t runs = 0;
@@ -52,7 +52,8 @@ std::string analysis_text(const StoreAnalysis& a);
 std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded);
 // The same as a report section (Markdown), "" if none.
 std::string excluded_markdown(const StoreAnalysis& a);
-// Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>.png/.pdf; "" or what went wrong.
+// Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>[_<drive>_A<A>_w<omega>].png/.pdf;
+// "" or what went wrong.
 // `option` names the flag that chose the prefix, for messages.
 std::string draw_ncoll_panels(const StoreAnalysis& a, const std::string& prefix, const std::string& option = "--plot");
 // Every file draw_ncoll_panels writes: PREFIX.json, then each panel's PNG and PDF.

@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "config/run_options.hpp"
 #include "store/sqlite_statement.hpp"
 
 namespace granchain {
@@ -30,14 +32,29 @@ std::string runs_sql(sqlite3* db) {
          "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
 }
 
+// The physics columns of the runs table that may be NULL (the drive's: "r.drive, r.plate_A,
+// r.plate_omega, "), those the store has (a store written before the plates has none): a profile
+// belongs to its run's drive.
+std::string drive_columns_sql(sqlite3* db) {
+  std::vector<std::string> have;
+  SqlStatement info(db, "SELECT name FROM pragma_table_info('runs')");
+  while (info.row()) have.push_back(info.column_text(0));
+  std::string sql;
+  for (const StoredParameter& c : stored_run_parameters())
+    if (c.nullable && c.parameter->identity == RunIdentity::Physics &&
+        std::find(have.begin(), have.end(), c.parameter->store_column) != have.end())
+      sql += "r." + c.parameter->store_column + ", ";
+  return sql;
+}
+
 std::string source_sql(ExportTable t, sqlite3* db) {
   switch (t) {
     case ExportTable::Runs:
       return runs_sql(db);
     case ExportTable::Profiles:
       return "SELECT pr.run_id, r.setup, r.engine, r.N, r.e, r.k, r.T0, r.m, r.d, r.g, r.T, r.transient, r.seed, "
-             "r.dt_factor, pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, pr.K_err, p.point_key "
-             "FROM profiles pr JOIN runs r ON r.id = pr.run_id LEFT JOIN run_points p ON p.run_id = r.id";
+             "r.dt_factor, " + drive_columns_sql(db) + "pr.i, pr.z_mean, pr.z_mean_err, pr.z_std, pr.z_std_err, pr.K AS K_mean, "
+             "pr.K_err, p.point_key FROM profiles pr JOIN runs r ON r.id = pr.run_id LEFT JOIN run_points p ON p.run_id = r.id";
     case ExportTable::Collapse:
       return "SELECT * FROM collapse_runs";
     case ExportTable::Realizations:
