@@ -43,13 +43,8 @@ struct Timing {
   double wall_time() const { return wall; }
 };
 
-Timing time_run(const Workload& w, EngineKind engine, double T, std::uint64_t seed) {
-  RunSpec spec;
-  spec.params = ChainParameters{.N = 25, .k = w.k, .e = w.e};
-  spec.engine.kind = engine;
-  spec.T = T;
-  spec.transient = 0.1 * T;
-  spec.seed = seed;
+// One run through run_driven_column, the code path of `granchain run`, timed.
+Timing time_spec(const RunSpec& spec) {
   const auto t0 = std::chrono::steady_clock::now();
   const RunResult r = run_driven_column(spec, {}, 1.0);
   Timing out;
@@ -60,6 +55,16 @@ Timing time_run(const Workload& w, EngineKind engine, double T, std::uint64_t se
   out.n_coll = r.n_coll.value;
   out.n_coll_err = r.n_coll.error;
   return out;
+}
+
+Timing time_run(const Workload& w, EngineKind engine, double T, std::uint64_t seed) {
+  RunSpec spec;
+  spec.params = ChainParameters{.N = 25, .k = w.k, .e = w.e};
+  spec.engine.kind = engine;
+  spec.T = T;
+  spec.transient = 0.1 * T;
+  spec.seed = seed;
+  return time_spec(spec);
 }
 
 // The engine alone (no sampling, no observers): wall time and root-search steps per reported
@@ -138,16 +143,7 @@ Timing time_plate_run(const DriveSpec& drive, double k, EngineKind engine, doubl
   spec.T = T;
   spec.transient = 0.1 * T;
   spec.seed = seed;
-  const auto t0 = std::chrono::steady_clock::now();
-  const RunResult r = run_driven_column(spec, {}, 1.0);
-  Timing out;
-  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.simulated = spec.T + spec.transient;
-  out.events = r.events;
-  out.steps = r.steps;
-  out.n_coll = r.n_coll.value;
-  out.n_coll_err = r.n_coll.error;
-  return out;
+  return time_spec(spec);
 }
 
 int main(int argc, char** argv) {
