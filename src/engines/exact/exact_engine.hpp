@@ -200,6 +200,11 @@ class ExactEngine final : public Engine {
   // The first root of f in [sigma0, sigma_max]; f is known positive before sigma0 (bound_clear).
   Root first_root(const EdgeFunction& f, double sigma_max, double sigma0) const;
   Root first_internal_root(int lo, bool watch_pass_through) const;
+  // The modes of a cluster (table tab, y0 and yd0 at formation) at its local time tau with their
+  // derivatives 0 .. P-1 (row n of yn, M values each), each amplitude times bound[2] and bound[P]
+  // (amp2, ampP), and the sums of amp2 and of the amplitudes added to sum2 and sum_amp.
+  static void mode_jets(const ClusterModeTable& tab, const double* y0, const double* yd0, double tau, double* yn, double* amp2,
+                        double* ampP, double& sum2, double& sum_amp);
   double pair_contact_end(int lo) const;  // two-particle cluster: closed form
 
   // --- events ---

@@ -35,25 +35,8 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
     double sum2 = 0.0, sum_amp = 0.0;
-    for (int j = 0; j < M; ++j) {
-      const ModeConstants& mc = tab.modes[j];
-      double y = 0.0, yd = 0.0;
-      if (j % 2 == 0) mc.evolve(gy0_[j], gyd0_[j], tau, y, yd);
-      yn[j] = y;
-      yn[M + j] = yd;
-      double ym = y, yc = yd;
-      for (int q = 2; q < P; ++q) {
-        const double next = mc.acceleration(ym, yc);
-        yn[q * M + j] = next;
-        ym = yc;
-        yc = next;
-      }
-      const double amp = mc.amplitude(y, yd);
-      amp2[j] = mc.bound[2] * amp;
-      ampP[j] = mc.bound[P] * amp;
-      sum2 += amp2[j];
-      sum_amp += amp;
-    }
+    // (the antisymmetric modes are zero at formation and stay exactly zero)
+    mode_jets(tab, gy0_.data(), gyd0_.data(), tau, yn.data(), amp2.data(), ampP.data(), sum2, sum_amp);
     double m2 = tab.s_max * sum2;
     tab.to_overlaps(yn.data(), x);
     tab.to_overlaps(yn.data() + M, xd);

@@ -121,6 +121,31 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
   return {Root::Refresh, sigma, 0};
 }
 
+void ExactEngine::mode_jets(const ClusterModeTable& tab, const double* y0, const double* yd0, double tau, double* yn, double* amp2,
+                            double* ampP, double& sum2, double& sum_amp) {
+  const int M = tab.M;
+  for (int j = 0; j < M; ++j) {
+    const ModeConstants& mc = tab.modes[j];
+    double y, yd;
+    mc.evolve(y0[j], yd0[j], tau, y, yd);
+    yn[j] = y;
+    yn[M + j] = yd;
+    // Derivatives 2 .. P-1 of mode j by its own equation (rows 2 .. P-1 of yn).
+    double ym = y, yc = yd;
+    for (int n = 2; n < P; ++n) {
+      const double next = mc.acceleration(ym, yc);
+      yn[n * M + j] = next;
+      ym = yc;
+      yc = next;
+    }
+    const double amp = mc.amplitude(y, yd);
+    amp2[j] = mc.bound[2] * amp;
+    ampP[j] = mc.bound[P] * amp;
+    sum2 += amp2[j];
+    sum_amp += amp;
+  }
+}
+
 // First time an overlap of the cluster returns to zero (which = pair within the cluster) or, when
 // watch_pass_through, first time an overlap reaches d (which = M + pair).
 ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_through) const {
@@ -137,26 +162,7 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
   for (int it = 0; it < kMaxIterations; ++it) {
     ++counters_.search_steps;
     double sum2 = 0.0, sum_amp = 0.0;
-    for (int j = 0; j < M; ++j) {
-      const ModeConstants& mc = tab.modes[j];
-      double y, yd;
-      mc.evolve(y0_[lo + j], yd0_[lo + j], tau, y, yd);
-      yn[j] = y;
-      yn[M + j] = yd;
-      // Derivatives 2 .. P-1 of mode j by its own equation (rows 2 .. P-1 of yn).
-      double ym = y, yc = yd;
-      for (int n = 2; n < P; ++n) {
-        const double next = mc.acceleration(ym, yc);
-        yn[n * M + j] = next;
-        ym = yc;
-        yc = next;
-      }
-      const double amp = mc.amplitude(y, yd);
-      amp2[j] = mc.bound[2] * amp;
-      ampP[j] = mc.bound[P] * amp;
-      sum2 += amp2[j];
-      sum_amp += amp;
-    }
+    mode_jets(tab, &y0_[lo], &yd0_[lo], tau, yn, amp2, ampP, sum2, sum_amp);
     const double m2 = tab.s_max * sum2;  // >= |x_i''| for every i (|S_ij| <= sqrt(2/n))
     tab.to_overlaps(yn, x);
     tab.to_overlaps(yn + M, xd);
