@@ -75,11 +75,7 @@ void resolve_drive(RunOptions& o, const std::map<std::string, RawValue>& raw) {
   DriveSpec& drive = o.spec.drive;
   const ChainParameters& p = o.spec.params;
   const auto given = [&](const char* name) { return raw.count(name) > 0; };
-  const auto real_of = [&](const char* name) {
-    for (const Parameter& q : run_parameters())
-      if (q.name == name) return read_real(q, raw.at(name));
-    return 0.0;
-  };
+  const auto real_of = [&](const char* name) { return read_real(*find_parameter(run_parameters(), name), raw.at(name)); };
   if (!drive.plate()) {
     for (const char* name : {"A", "omega", "Gamma", "f"})
       if (given(name))

@@ -58,7 +58,6 @@ Contact first_contact(const PlateMotion& plate, double t0, double h0, double w0,
     double h = free_flight::quadratic_step(f, f1, -0.5 * B);
     // At zero but not approaching (grazing within round-off): move on by a step that resolves time.
     if (!(h > 0)) h = 1e-12 * std::max(1.0, std::abs(t)) / std::max(omega, 1.0);
-    if (h == kInf) return {Contact::None, kInf};
     const double next = s + h;
     if (!(next > s)) return {Contact::Touch, t};  // time no longer resolves the step: the root is here
     s = next;

@@ -97,6 +97,9 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     start_piece(now_);
     for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_, &gc_re_, &gc_im_, &gP_re_, &gP_im_})
       v->assign(2 * static_cast<std::size_t>(n_), 0.0);
+    // The searches' scratch for a mirror cluster of up to 2N particles (2N - 1 modes).
+    smode_.assign(kTaylorOrder * 2 * static_cast<std::size_t>(n_), 0.0);
+    samp_.assign(4 * static_cast<std::size_t>(n_), 0.0);
     for (auto* v : {&gxr_, &gxdr_, &gv_}) v->assign(static_cast<std::size_t>(n_) + 1, 0.0);
   }
   const double surface = plate_ != nullptr ? plate_z(now_) : 0.0;
@@ -317,7 +320,7 @@ void ExactEngine::handle(int slot, const Time& t, EventSink& sink) {
                                                 : fmt::format("particles {} and {} passed through each other at t = {:.10g} "
                                                               "(overlap reached d)", s.pair + 1, s.pair + 2, t.value()));
         } else {
-          grounded_refresh(t);
+          reform_grounded(t, false);  // a refresh: no physics
         }
         return;
       }

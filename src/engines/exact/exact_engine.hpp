@@ -249,8 +249,7 @@ class ExactEngine final : public Engine {
   // The current piece of the plate's motion: z_p = z + v tau + a tau^2 / 2 from t0 to end.
   struct Piece {
     Time t0 = 0, end = 0;
-    double z = 0, v = 0, a = 0;
-    bool drop = false;  // the motion jumps at `end` (the sawtooth)
+    double z = 0, v = 0, a = 0;  // a = 0 for the sine (its a_p is in the particular solution)
   };
   double plate_z(Time t) const {
     if (sine_) return plate_->amplitude() * std::sin(plate_phase(t));
@@ -290,14 +289,15 @@ class ExactEngine final : public Engine {
   void grounded_split(int pair, Time t, double tau, EventSink& sink);
   void grounded_merge(int pair, Time t, EventSink& sink);
   void plate_switch(Time t, EventSink& sink);
-  void grounded_refresh(Time t);
+  // The grounded cluster re-formed from its own state at t (about a new piece's particular
+  // solution when new_piece), then re-predicted with its gap above and the floor.
+  void reform_grounded(Time t, bool new_piece);
   const PlateMotion* plate_ = nullptr;
   Piece piece_;
   bool grounded_ = false;
   int gn_ = 0;                  // particles of the grounded cluster
   Time gt0_ = 0;                // its formation
   double g_search_from_ = 0;    // local time from which its contact ends are searched
-  double gp2_ = 0;              // -(g + a_p): the line's curvature of the gap above it (piecewise drives)
   bool sine_ = false;           // the plate is the sine
   std::vector<double> gy0_, gyd0_, gamp0_;  // its free mirror modes at formation, amplitude bounds (2n - 1)
   // The sine's particular solution: mode j is Im(c_j e^{i theta}), virtual overlap i Im(P_i e^{i theta});

@@ -26,12 +26,7 @@ void ExactEngine::start_piece(Time t) {
   piece_.v = p.v;
   piece_.a = p.a;
   piece_.end = Time(plate_->next_switch(t.value()));
-  piece_.drop = plate_->kind() == DriveKind::Sawtooth;
-  gp2_ = -(g_ + piece_.a);
-  if (sine_) {  // one piece for ever; the sinusoid's own functions (plate_z, ground_zdev) serve
-    piece_.a = 0.0;
-    gp2_ = -g_;
-  }
+  if (sine_) piece_.a = 0.0;  // one piece for ever; the sinusoid's own functions (plate_z, ground_zdev) serve
 }
 
 double ExactEngine::ground_zdot(Time t) const {
@@ -290,32 +285,23 @@ void ExactEngine::plate_switch(Time t, EventSink& sink) {
     predict_floor();
     return;
   }
-  if (piece_.drop) {  // the surface drops away from particle 1: the contact ends here
+  if (plate_->kind() == DriveKind::Sawtooth) {  // the surface drops away from particle 1: the contact ends here
     plate_release(t, t - gt0_, sink, false);
     start_piece(t);
     predict_floor();
     return;
   }
+  reform_grounded(t, true);
+}
+
+void ExactEngine::reform_grounded(Time t, bool new_piece) {
   const int n = gn_;
   double* xr = gxr_.data();
   double* xdr = gxdr_.data();
   grounded_state(t - gt0_, t, xr, xdr, nullptr);
   if (n < n_) sync_gap(n - 1, t);  // on the old piece
-  start_piece(t);
-  form_grounded(n, t, xr, xdr);  // the same overlaps about the new particular solution
-  if (n < n_) rebase_gap(n - 1, t);
-  predict_grounded();
-  if (n < n_) predict_gap(n - 1);
-  predict_floor();
-}
-
-void ExactEngine::grounded_refresh(Time t) {
-  const int n = gn_;
-  double* xr = gxr_.data();
-  double* xdr = gxdr_.data();
-  grounded_state(t - gt0_, t, xr, xdr, nullptr);
-  if (n < n_) sync_gap(n - 1, t);
-  form_grounded(n, t, xr, xdr);
+  if (new_piece) start_piece(t);
+  form_grounded(n, t, xr, xdr);  // the same overlaps about the (new) particular solution
   if (n < n_) rebase_gap(n - 1, t);
   predict_grounded();
   if (n < n_) predict_gap(n - 1);

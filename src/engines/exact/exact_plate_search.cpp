@@ -24,7 +24,9 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
   const int n = gn_;
   const ClusterModeTable& tab = tables_[2 * n];
   const int M = tab.M;
-  std::vector<double> yn(static_cast<std::size_t>(P) * M), amp2(M), ampP(M);
+  double* yn = smode_.data();  // the same scratch as first_internal_root, sized for 2N - 1 modes above a plate
+  double* amp2 = samp_.data();
+  double* ampP = samp_.data() + M;
   double* x = gx_.data();
   double* xd = gxd_.data();
   double tau = g_search_from_;
@@ -36,17 +38,20 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
     ++counters_.search_steps;
     double sum2 = 0.0, sum_amp = 0.0;
     // (the antisymmetric modes are zero at formation and stay exactly zero)
-    mode_jets(tab, gy0_.data(), gyd0_.data(), tau, yn.data(), amp2.data(), ampP.data(), sum2, sum_amp);
+    mode_jets(tab, gy0_.data(), gyd0_.data(), tau, yn, amp2, ampP, sum2, sum_amp);
     double m2 = tab.s_max * sum2;
-    tab.to_overlaps(yn.data(), x);
-    tab.to_overlaps(yn.data() + M, xd);
+    tab.to_overlaps(yn, x);
+    tab.to_overlaps(yn + M, xd);
     // The sine's particular solution of overlap i: Im(P_i e^{i theta}), derivative q Im(P_i (i w)^q e^{i theta}).
     const double w = sine_ ? plate_->omega() : 0.0;
     const double th = sine_ ? plate_phase(gt0_) + w * tau : 0.0, sn = std::sin(th), cs = std::cos(th);
+    double wpow[P + 1];
+    wpow[0] = 1.0;
+    for (int q = 1; q <= P; ++q) wpow[q] = wpow[q - 1] * w;
     const auto particular = [&](int i, int q) {  // q-th derivative
       if (!sine_) return 0.0;
       const double re = gP_re_[i] * cs - gP_im_[i] * sn, im = gP_re_[i] * sn + gP_im_[i] * cs;  // P e^{i theta}
-      const double wq = std::pow(w, q);
+      const double wq = wpow[q];
       switch (q % 4) {  // Im(i^q P e^{i theta})
         case 0: return wq * im;
         case 1: return wq * re;
@@ -94,7 +99,7 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
       jk.d[5] = sign * (s5 + particular(i, 5));
       const double pa = particular_amp(i);
       jk.m2 = b2 + pa * w * w;
-      jk.mP = bP + pa * std::pow(w, P);
+      jk.mP = bP + pa * wpow[P];
       return jk;
     };
     const double skip = kResolutionSkip * tau_c_;
@@ -103,7 +108,7 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
     const auto step_of = [&](double f, double step) { return f <= zero ? std::max(step, skip) : step; };
     double h = kInf;
     int which = -1;
-    Jet jw;
+    Jet jw{};  // (read only once a step has chosen it)
     for (int k = 0; k < functions; ++k) {
       const double f = value(k), f1 = rate(k);
       if (f <= zero) {
@@ -132,7 +137,7 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
 void ExactEngine::predict_grounded() {
   const int n = gn_;
   double reach = 0.0, offset_max = 0.0;
-  for (double a : gamp0_) reach += a;
+  for (int j = 0; j < 2 * n - 1; ++j) reach += gamp0_[j];  // (entries beyond belong to an earlier, larger cluster)
   for (int q = 0; q < n; ++q) {
     const double p = sine_ ? std::hypot(gP_re_[n - 1 + q], gP_im_[n - 1 + q]) : 0.0;
     offset_max = std::max(offset_max, grounded_offset(n - 1 + q) + p);
@@ -164,7 +169,7 @@ void ExactEngine::predict_ground_gap(int i) {
   reach = grounded_reach_top(reach);
   EdgeFunction fn;
   fn.c1 = gaps_.c[i];
-  fn.p2 = gp2_;
+  fn.p2 = -(g_ + piece_.a);  // the plate's piece; the sine's curvature is in its sinusoid term
   fn.c0 = gaps_.s[i] - gap_mb_[i] + gap_ma_[i];
   fn.noise = 8 * std::numeric_limits<double>::epsilon() * (std::abs(gaps_.s[i]) + std::abs(gap_mb_[i]) + std::abs(gap_ma_[i]));
   if (sine_) {
