@@ -42,7 +42,7 @@ def in_range(curves, lo, hi):
 def e_norm(curves):
     es = [c["e"] for c in curves]
     lo, hi = min(es), max(es)
-    return plt.Normalize(lo, hi if hi > lo else lo + 1e-9)
+    return plt.Normalize(lo, hi) if hi > lo else plt.Normalize(lo - 0.05, hi + 0.05)  # one e: a bar around it
 
 
 def e_colorbar(fig, ax, norm):
@@ -164,6 +164,7 @@ def draw(family, prefix, k_min):
         lines = family.get("ec_lines") or []
         narrow = in_range(curves, min(lines) - 0.02, max(lines) + 0.02) if lines else curves
     tenths = [c for c in curves if abs(10 * c["e"] - round(10 * c["e"])) < 1e-9] or curves
+    tenths_title = "(c) $e$ = " + (", ".join("%g" % c["e"] for c in tenths) if len(tenths) <= 4 else "%g, %g, …" % (tenths[0]["e"], tenths[1]["e"]))
     crit = [family["e_c1"]["value"]] if family.get("e_c1") else []
     es = sorted(c["e"] for c in curves)
     zoom = None
@@ -177,7 +178,7 @@ def draw(family, prefix, k_min):
     grid = fig.add_gridspec(3, 3, height_ratios=[1, 1, 0.2])
     top = [fig.add_subplot(grid[0, i]) for i in range(3)]
     for ax, chosen, log_n, title in ((top[0], wide, False, "(a) $e$ = %.3g … %.3g"), (top[1], narrow, False, "(b) $e$ = %.3g … %.3g"),
-                                     (top[2], tenths, True, "(c) $e$ = 0.1, 0.2, …")):
+                                     (top[2], tenths, True, tenths_title)):
         norm = e_norm(chosen)
         label = title % (min(c["e"] for c in chosen), max(c["e"] for c in chosen)) if "%" in title else title
         against_log_k(ax, chosen, k_min, log_n, label, norm)
@@ -194,7 +195,10 @@ def draw(family, prefix, k_min):
         ax_z.set_title(r"(d$'$) the dashed box of (d)", loc="left")
     local_exponents(fig.add_subplot(grid[1, 2]), curves, fig)
     legend_axes(fig.add_subplot(grid[2, :]), handles, labels, ncol=6, columnspacing=1.2)
-    fig.suptitle(r"$N = %d$, $k_B T_0 = %g$, engine %s (crosses: window not stationary)" % (N, family["T0"], family["engine"]))
+    drive = ""
+    if isinstance(family.get("drive"), str):  # a vibrating plate (docs/drives.md)
+        drive = r", %s plate $A = %.4g$, $\omega = %g$" % (family["drive"], family["plate_A"], family["plate_omega"])
+    fig.suptitle(r"$N = %d$, $k_B T_0 = %g$, engine %s%s (crosses: window not stationary)" % (N, family["T0"], family["engine"], drive))
     stem = family.get("stem") or "%s_N%d_T0%g_%s" % (prefix, N, family["T0"], family["engine"])
     save(fig, stem)
     plt.close(fig)

@@ -45,12 +45,17 @@ py::dict trace(const py::kwargs& kwargs) {
   std::optional<py::error_already_set> stop = run_interruptible(cancel, [&] { tr = record_trajectory(spec, &cancel); });
   const auto S = static_cast<py::ssize_t>(tr.t.size());
   const auto N = static_cast<py::ssize_t>(spec.run.params.N);
-  py::array_t<double> t(S), z({S, N});
+  py::array_t<double> t(S), z({S, N}), v({S, N});
   auto tw = t.mutable_unchecked<1>();
   auto zw = z.mutable_unchecked<2>();
+  auto vw = v.mutable_unchecked<2>();
   for (py::ssize_t s = 0; s < S; ++s) {
-    tw(s) = tr.t[static_cast<std::size_t>(s)];
-    for (py::ssize_t i = 0; i < N; ++i) zw(s, i) = tr.z[static_cast<std::size_t>(s)][static_cast<std::size_t>(i)];
+    const auto su = static_cast<std::size_t>(s);
+    tw(s) = tr.t[su];
+    for (py::ssize_t i = 0; i < N; ++i) {
+      zw(s, i) = tr.z[su][static_cast<std::size_t>(i)];
+      vw(s, i) = tr.v[su][static_cast<std::size_t>(i)];
+    }
   }
   const auto E = static_cast<py::ssize_t>(tr.events.size());
   py::array_t<double> et(E), speed(E);
@@ -92,6 +97,7 @@ py::dict trace(const py::kwargs& kwargs) {
   d["parameters"] = params;
   d["t"] = t;
   d["z"] = z;
+  d["v"] = v;
   if (!tr.plate.empty()) {  // the plate's surface at each sample
     py::array_t<double> plate(S);
     for (py::ssize_t s = 0; s < S; ++s) plate.mutable_at(s) = tr.plate[static_cast<std::size_t>(s)];
@@ -111,7 +117,7 @@ void bind_trace(py::module_& m) {
   m.def("trace", &trace,
         "Record the heights z_i(t) of every particle on a grid of times (granchain trace): the run parameters that trace "
         "takes, setup ('driven' or 'free'), t_from, t_to, dt, and for free space a, v0, dv0, realization. Returns a dict: "
-        "t (S), z (S x N), plate (S: the surface of a vibrating plate, or None), events (t, kind, i, j, speed), parameters, "
+        "t (S), z and v (S x N), plate (S: the surface of a vibrating plate, or None), events (t, kind, i, j, speed), parameters, "
         "interrupted.");
   m.def("trace_parameters", [] {
     py::list l = parameter_list(trace_window_parameters());

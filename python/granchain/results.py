@@ -159,8 +159,8 @@ class CollapseResult(Record):
 
 
 class TraceResult(Record):
-    """A space-time trace (trace()): t (S), z (S x N), plate (S, a vibrating plate's surface, or
-    None), events."""
+    """A space-time trace (trace()): t (S), z and v (S x N: heights and velocities), plate (S, a
+    vibrating plate's surface, or None), events."""
 
     def __repr__(self):
         p = self["parameters"]

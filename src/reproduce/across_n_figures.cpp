@@ -16,16 +16,13 @@ namespace granchain {
 namespace {
 
 const std::vector<int> kAcrossN = {20, 25, 30, 40, 50, 100, 150};
-// The critical region as N(1 - e): the paper finds 1 - e_c1 = 2.6/N and 1 - e_c2 = 3.0/N (Eq. e-fit);
-// the grid reaches from deep in the power-law regime (5/N) to well inside the uncollapsing one (1.2/N).
-const std::vector<double> kCriticalC = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2};
 // Table 1's and Fig. powerexpo's power-law exponents are measured at these e.
 const char* kPowerLawE = "0.1,0.2,0.3,0.4";
 
 std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<int>& Ns, const std::string& T0) {
   std::vector<GridBlock> blocks;
   for (int N : Ns)
-    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, kCriticalC) + "," + kPowerLawE, preset_k(o), preset_T(o, N), T0});
+    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, critical_region_c()) + "," + kPowerLawE, preset_k(o), preset_T(o, N), T0});
   return blocks;
 }
 
@@ -45,8 +42,9 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
   s.status = s.failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
   s.grid_text = fmt::format("k = {} (fits over k >= {}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
-                            "e = 1 - c/N for c = 5, 4, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2 and e = {}; {} runs",
-                            preset_k(o), power_of_ten_text(preset_k_min(o)), preset_T(o, 20), preset_T(o, 50), kPowerLawE, s.a.runs);
+                            "e = 1 - c/N for {} and e = {}; {} runs",
+                            preset_k(o), power_of_ten_text(preset_k_min(o)), preset_T(o, 20), preset_T(o, 50), critical_region_text(),
+                            kPowerLawE, s.a.runs);
   return s;
 }
 
@@ -60,17 +58,6 @@ std::string critical_text(const analysis::CriticalValue& c, int digits = 4) {
 }
 std::string bracket_text(const analysis::CriticalValue& c) {
   return c.found ? fmt::format("{:.4f} – {:.4f}", c.low, c.high) : "not found";
-}
-
-// The e of the grid at which the profiles show the partially condensed state (a K_i dip with an
-// interior hot layer above it, analysis/condensation.hpp), within the critical region (c <= 5).
-std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f) {
-  std::vector<double> out;
-  const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
-  if (fc == a.condensation.end()) return out;
-  for (const auto& [e, c] : fc->second)
-    if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= kCriticalC.front() + 1e-9) out.push_back(e);
-  return out;
 }
 
 // "0.220 ± 0.002 (χ² of a constant 1.2 on 3 dof, z = −0.6; slope −0.003 ± 0.004 per decade of T0)":

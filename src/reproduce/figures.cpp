@@ -43,6 +43,11 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
     def.raw["k"] = {b.k, ""};
     def.raw["T"] = {b.T, ""};
     def.raw["T0"] = {b.T0, ""};
+    if (b.drive != "thermal") {
+      def.raw["drive"] = {b.drive, ""};
+      def.raw["A"] = {b.A, ""};
+      def.raw["omega"] = {b.omega, ""};
+    }
     def.replicas = b.replicas;
     for (SweepPoint& p : build_sweep_points(def))
       if (seen.insert(p.key).second) all.push_back(std::move(p));
@@ -184,6 +189,32 @@ std::string draw_figure(const ReproduceFlags& o, const std::string& name, const 
   write_output(prefix + ".json", data.dump(1) + "\n");
   draw(script, {prefix + ".json", prefix});
   return prefix + ".png (and .pdf)";
+}
+
+std::string sweep_command(const GridBlock& b) {
+  std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}", b.N, b.e, b.k, b.T, b.T0);
+  if (b.drive != "thermal") line += fmt::format(" --drive {} --A {} --omega {}", b.drive, b.A, b.omega);
+  if (b.replicas > 1) line += fmt::format(" --replicas {}", b.replicas);
+  return line;
+}
+
+const std::vector<double>& critical_region_c() {
+  static const std::vector<double> c = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2};
+  return c;
+}
+std::string critical_region_text() {
+  std::string out;
+  for (double c : critical_region_c()) out += fmt::format("{}{:g}", out.empty() ? "c = " : ", ", c);
+  return out;
+}
+
+std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f) {
+  std::vector<double> out;
+  const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
+  if (fc == a.condensation.end()) return out;
+  for (const auto& [e, c] : fc->second)
+    if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= critical_region_c().front() + 1e-9) out.push_back(e);
+  return out;
 }
 
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c) {

@@ -73,7 +73,11 @@ struct FigureOutcome {
 struct GridBlock {
   std::string N, e, k, T, T0 = "1";
   int replicas = 1;  // independent runs (seeds) per point
+  // The drive (--drive, --A, --omega): the thermal floor, or a plate of amplitude A and frequency omega.
+  std::string drive = "thermal", A = "", omega = "";
 };
+// "granchain sweep --N ... --T0 ..." with --drive/--A/--omega for a plate and --replicas when > 1.
+std::string sweep_command(const GridBlock& b);
 
 // The command that reproduces a report of o.figure, for its "Command:" line: `granchain reproduce
 // --figure F --preset P`, then --db and --out as given (paths as the user wrote them, quoted for a
@@ -130,6 +134,14 @@ void draw(const std::string& script, const std::vector<std::string>& args);
 // "out/<name>.png (and .pdf)". Throws OutputError.
 std::string draw_figure(const ReproduceFlags& o, const std::string& name, const nlohmann::json& data, const std::string& script);
 
+// The critical region as c = N(1 - e): the paper finds 1 - e_c1 = 2.6/N and 1 - e_c2 = 3.0/N (Eq. e-fit);
+// the grid reaches from deep in the power-law regime (c = 5) to well inside the uncollapsing one (1.2).
+const std::vector<double>& critical_region_c();
+// "c = 5, 4, 3.5, ..., 1.2" for reports.
+std::string critical_region_text();
+// The e of the family's grid at which the profiles show the partially condensed state (a K_i dip
+// with an interior hot layer above it, analysis/condensation.hpp), within the critical region.
+std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f);
 // The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c);
 
@@ -139,6 +151,7 @@ std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o);  // f
 std::vector<GridBlock> across_n_grid(const ReproduceFlags& o);              // fig6, fig7, fig9
 std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // table1
 std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o);          // limit-driven
+std::vector<GridBlock> drives_grid(const ReproduceFlags& o);                // drives-onset (all N), drives-ncoll (N = 25)
 
 // The statements of Sec. III.B on the fine structure of n_coll(e) (N = 3..6) tested on these
 // points' curves at their largest k, per seed and combined: a Markdown section ("" without data).
@@ -157,6 +170,10 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log
 FigureOutcome reproduce_free_space_counts(const ReproduceFlags& o, ReproductionLog& log);   // fig10 (ntot)
 std::vector<CollapseSpec> free_space_count_specs(const ReproduceFlags& o);  // the counts fig10 reads
 FigureOutcome reproduce_table1(const ReproduceFlags& o, ReproductionLog& log);              // table1
+// The vibrating plates beside the thermal floor (group `drives`, drive_figures.cpp).
+FigureOutcome reproduce_drive_onset(const ReproduceFlags& o, ReproductionLog& log);     // drives-onset
+FigureOutcome reproduce_drive_ncoll(const ReproduceFlags& o, ReproductionLog& log);     // drives-ncoll
+FigureOutcome reproduce_drive_profiles(const ReproduceFlags& o, ReproductionLog& log);  // drives-profiles
 // Beyond the paper (group `beyond`): the k -> infinity limit and the collision sequences.
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o, ReproductionLog& log);  // limit-free
 std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o);  // the counts limit-free reads

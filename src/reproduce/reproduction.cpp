@@ -35,6 +35,10 @@ const std::vector<FigureEntry>& figures() {
        free_space_exponent_specs},
       {"limit-driven", "beyond: driven n_coll as k -> infinity", reproduce_driven_exponents, driven_limit_grid, "beyond"},
       {"intervals", "beyond: collision-interval sequences", reproduce_collision_intervals, nullptr, "beyond"},
+      {"drives-onset", "drives: e_c1, e_c2 against N per drive", reproduce_drive_onset, drives_grid, "drives"},
+      {"drives-ncoll", "drives: n_coll(k) at N = 25 per drive", reproduce_drive_ncoll, drives_grid, "drives"},
+      {"drives-profiles", "drives: density, temperature and centre of mass of the vibrated column", reproduce_drive_profiles, nullptr,
+       "drives"},
   };
   return list;
 }
@@ -46,7 +50,7 @@ std::vector<const FigureEntry*> chosen_figures(const std::string& figure) {
   return chosen;
 }
 
-bool is_figure_group(const std::string& figure) { return figure == "all" || figure == "beyond"; }
+bool is_figure_group(const std::string& figure) { return figure == "all" || figure == "beyond" || figure == "drives"; }
 
 std::string figure_names() {
   std::string names;
@@ -105,8 +109,7 @@ std::string sweep_commands(const std::vector<const FigureEntry*>& chosen, const 
     if (!f->grid) continue;
     o.figure = f->name;
     for (const GridBlock& b : f->grid(o)) {
-      const std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}{}", b.N, b.e, b.k, b.T, b.T0,
-                                           b.replicas > 1 ? fmt::format(" --replicas {}", b.replicas) : "");
+      const std::string line = sweep_command(b);
       if (!seen.insert(line).second) continue;
       blocks.push_back(b);
       double seconds = 0.0;

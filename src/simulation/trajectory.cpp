@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "engines/engine.hpp"
 #include "engines/engine_registry.hpp"
@@ -64,7 +65,12 @@ Trajectory record_trajectory(const TraceSpec& spec, const CancelFlag* cancel) {
     }
     tr.t.push_back(t);
     tr.z.push_back(engine->state().z);
-    if (plate) tr.plate.push_back(plate->z(t));
+    tr.v.push_back(engine->state().v);
+    if (plate) {
+      tr.plate.push_back(plate->z(t));
+      tr.plate_v.push_back(plate->v(t));
+      tr.plate_phase.push_back(std::fmod(plate->omega() * t + plate->phase(), 2 * std::numbers::pi));
+    }
   }
   tr.events = std::move(sink.events);
   return tr;

@@ -23,7 +23,10 @@ struct TraceSpec {
 struct Trajectory {
   std::vector<double> t;                // sample times
   std::vector<std::vector<double>> z;   // z[s][i]: height of particle i + 1 at t[s]
-  std::vector<double> plate;            // plate[s]: height of a vibrating plate's surface at t[s] (empty: thermal floor)
+  std::vector<std::vector<double>> v;   // v[s][i]: its velocity
+  // Above a vibrating plate (all empty under the thermal floor): its surface's height and velocity
+  // and its phase theta = omega t + phi reduced to [0, 2 pi) at t[s].
+  std::vector<double> plate, plate_v, plate_phase;
   std::vector<Event> events;            // contact begins and ends, floor hits (and plate contacts) in [t_from, t_to]
   bool interrupted = false;             // cancelled: the samples and events up to t.back() only
 };

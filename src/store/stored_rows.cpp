@@ -57,7 +57,8 @@ std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection sel
   const SpecColumns run(rows, "id");
   const int n_coll = rows.column("n_coll"), n_coll_err = rows.column("n_coll_err"), wall = rows.column("wall_seconds"),
             cpu = rows.column("cpu_seconds"), stationary = rows.column("stationary"), key = rows.column("point_key"),
-            replica = rows.column("replica");
+            replica = rows.column("replica"), floor_rate = rows.column("floor_rate"), floor_rate_err = rows.column("floor_rate_err"),
+            pp_rate = rows.column("pp_rate"), pp_rate_err = rows.column("pp_rate_err");
   std::vector<StoredRun> out;
   while (rows.next()) {
     SqlStatement& r = rows.row();
@@ -65,6 +66,10 @@ std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection sel
     run.read(r, s.id, s.setup, s.spec);
     s.n_coll = r.column_double(n_coll);
     s.n_coll_err = r.column_double(n_coll_err);
+    s.floor_rate = r.column_double(floor_rate);
+    s.floor_rate_err = r.column_double(floor_rate_err);
+    s.pp_rate = r.column_double(pp_rate);
+    s.pp_rate_err = r.column_double(pp_rate_err);
     s.wall_seconds = r.column_double(wall);
     s.cpu_seconds = r.column_double(cpu);
     if (r.column_type(stationary) != SQLITE_NULL) s.stationary = r.column_int(stationary) != 0;

@@ -19,6 +19,8 @@ struct StoredRun {
   std::string setup;                     // "driven_column"
   RunSpec spec;                          // every stored parameter (k infinite for hard spheres); defaults where NULL
   double n_coll = 0, n_coll_err = 0;
+  // Its two parts: floor (or plate) hits and pair collisions per unit time (n_coll = (floor + pairs) / N).
+  double floor_rate = 0, floor_rate_err = 0, pp_rate = 0, pp_rate_err = 0;
   double wall_seconds = 0;
   double cpu_seconds = 0;                // the run's thread CPU time; NaN for runs stored before it was recorded
   std::optional<bool> stationary;        // the window's halves check; none for runs stored before it

@@ -48,3 +48,16 @@ def test_bad_input_is_the_clis_message_by_keyword(cli):
         granchain.trace(N=3, t_to=0)
     with pytest.raises(ValueError, match="trace needs a soft engine"):
         granchain.trace(N=3, engine="hard")
+
+
+def test_a_traces_velocities_are_the_rate_of_change_of_its_heights():
+    # One sphere between floor hits flies a parabola, whose central difference is its velocity exactly.
+    h = 1e-3
+    tr = granchain.trace(N=1, e=0.9, k=1e6, t_to=20, dt=h, seed=4)
+    assert tr.v.shape == tr.z.shape == (len(tr.t), 1)
+    hits = tr.events.t
+    inner = [s for s in range(1, len(tr.t) - 1) if not np.any(np.abs(hits - tr.t[s]) < 2 * h) and tr.z[s, 0] > 0.51]
+    assert len(inner) > 0.5 * len(tr.t)
+    s = np.array(inner)
+    central = (tr.z[s + 1, 0] - tr.z[s - 1, 0]) / (2 * h)
+    assert np.max(np.abs(central - tr.v[s, 0])) < 1e-8
