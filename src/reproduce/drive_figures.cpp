@@ -123,8 +123,8 @@ std::string one_a_row(const std::vector<const analysis::AcrossN*>& across, const
   return fmt::format("| {} | {} | {:.1f} on {} dof | {} |\n", v.what, plus_minus(mean, err, 2), chi2, fits.size() - 1, pulls);
 }
 
-// The trajectories of drives-profiles: N = 25 at c = N(1 - e) = 1.2 (uncollapsing, fluidised) and 4
-// (power-law side, condensed), at one k, sampled every dt over [from, from + length].
+// The trajectories of drives-profiles: N = 25 at c = N(1 - e) = 1.2 (the fluid side of the critical
+// region) and 4 (the power-law side, condensed), at one k, sampled every dt over [from, from + length].
 struct ProfileWindow {
   double k, from, length, dt;
 };

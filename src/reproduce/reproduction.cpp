@@ -198,7 +198,8 @@ ReproductionOutcome run_figures(const std::vector<const FigureEntry*>& chosen, c
     all += "\nWall time: this command's, for the figure (runs already stored are only read). Its runs' CPU time: the "
            "stored CPU time of each driven-column run the figure analyses (the wall time for runs stored before CPU time "
            "was recorded: stretched where the machine was loaded), summed over the sittings that ran them; figures that "
-           "share runs (fig6, fig7, fig9 and Table 1's k_B T0 = 1; fig5 and fig8) count them in each.\n";
+           "share runs (fig6, fig7, fig9 and Table 1's k_B T0 = 1; fig5 and fig8; drives-onset and drives-ncoll's N = 25) "
+           "count them in each.\n";
     try {
       write_output(output_path(o, report_name(o.figure)), all + sections);
       result.group_report = output_path(o, report_name(o.figure));
