@@ -175,16 +175,19 @@ std::string growth_split_table(const std::string& db, const std::vector<SweepPoi
     const StoredRun& lo = runs.begin()->second;
     const StoredRun& hi = runs.rbegin()->second;
     const double decades = std::log10(hi.spec.params.k / lo.spec.params.k), N = lo.spec.params.N;
-    const double floor = (hi.floor_rate - lo.floor_rate) / decades, floor_err = std::hypot(hi.floor_rate_err, lo.floor_rate_err) / decades;
-    const double pair = (hi.pp_rate - lo.pp_rate) / ((N - 1) * decades),
-                 pair_err = std::hypot(hi.pp_rate_err, lo.pp_rate_err) / ((N - 1) * decades);
+    const double floor_growth = (hi.floor_rate - lo.floor_rate) / decades,
+                 floor_growth_err = std::hypot(hi.floor_rate_err, lo.floor_rate_err) / decades;
+    const double pair_growth = (hi.pp_rate - lo.pp_rate) / ((N - 1) * decades),
+                 pair_growth_err = std::hypot(hi.pp_rate_err, lo.pp_rate_err) / ((N - 1) * decades);
     // The ratio only where the pairs' growth is significant (3 errors).
-    const std::string ratio = std::abs(pair) > 3 * pair_err && pair_err > 0
-                                  ? plus_minus(floor / pair, std::abs(floor / pair) * std::hypot(floor_err / floor, pair_err / pair), 2)
-                                  : "-";
+    std::string ratio = "-";
+    if (std::abs(pair_growth) > 3 * pair_growth_err && pair_growth_err > 0) {
+      const double r = floor_growth / pair_growth;
+      ratio = plus_minus(r, std::hypot(floor_growth_err, r * pair_growth_err) / std::abs(pair_growth), 2);
+    }
     t += fmt::format("| {} | {:.4g} | {:.2g} | {} | {} | {} | {} |\n", de.first, de.second, N * (1 - de.second),
                      plus_minus((hi.n_coll - lo.n_coll) / decades, std::hypot(hi.n_coll_err, lo.n_coll_err) / decades, 3),
-                     plus_minus(floor, floor_err, 3), plus_minus(pair, pair_err, 3), ratio);
+                     plus_minus(floor_growth, floor_growth_err, 3), plus_minus(pair_growth, pair_growth_err, 3), ratio);
   }
   return t;
 }
@@ -201,7 +204,7 @@ std::vector<GridBlock> drives_grid(const ReproduceFlags& o) {
   return blocks;
 }
 
-// e_c1 and e_c2 against 1/N for every drive, the fits (1 - e_c) = A/N per drive, and one A for all.
+// e_c1 and e_c2 against N for every drive, the fits (1 - e_c) = A/N per drive, and one A for all.
 FigureOutcome reproduce_drive_onset(const ReproduceFlags& o, ReproductionLog& log) {
   const std::vector<SweepPoint> points = grid_points(drives_grid(o));
   const std::vector<std::string> failed = run_missing_points(points, o, o.figure, log);
