@@ -301,8 +301,8 @@ class ExactEngine final : public Engine {
   bool sine_ = false;           // the plate is the sine
   std::vector<double> gy0_, gyd0_, gamp0_;  // its free mirror modes at formation, amplitude bounds (2n - 1)
   // The sine's particular solution: mode j is Im(c_j e^{i theta}), virtual overlap i Im(P_i e^{i theta});
-  // W of ground_zdot.
-  std::vector<double> gc_re_, gc_im_, gP_re_, gP_im_;
+  // |P_i|; W of ground_zdot.
+  std::vector<double> gc_re_, gc_im_, gP_re_, gP_im_, gP_abs_;
   double gW_re_ = 0, gW_im_ = 0;
   mutable std::vector<double> gx_, gxd_, gy_, gyd_, gxr_, gxdr_, gv_;  // scratch
 

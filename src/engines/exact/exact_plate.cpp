@@ -91,6 +91,7 @@ void ExactEngine::form_grounded(int n, Time t, const double* xr, const double* x
     }
     tab.to_overlaps(gc_re_.data(), gP_re_.data());
     tab.to_overlaps(gc_im_.data(), gP_im_.data());
+    for (int i = 0; i < M; ++i) gP_abs_[i] = std::hypot(gP_re_[i], gP_im_[i]);
     // The free modes start from the state less the particular solution at t.
     const double th = plate_phase(t), sn = std::sin(th), cs = std::cos(th);
     for (int j = 0; j < M; ++j) {

@@ -7,11 +7,14 @@
 #include <vector>
 
 #include "engines/exact/exact_engine.hpp"
+#include "engines/exact/step_choice.hpp"
 #include "engines/exact/taylor_bounds.hpp"
 
 namespace granchain {
 
 using taylor::Jet;
+using taylor::StepChoice;
+using taylor::shortest_safe_step;
 using taylor::at_root;
 using taylor::quadratic_step;
 using taylor::safe_step;
@@ -59,7 +62,7 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
         default: return -wq * re;
       }
     };
-    const auto particular_amp = [&](int i) { return sine_ ? std::hypot(gP_re_[i], gP_im_[i]) : 0.0; };
+    const auto particular_amp = [&](int i) { return sine_ ? gP_abs_[i] : 0.0; };
     if (sine_) {
       double pmax = 0.0;
       for (int q = 0; q < n; ++q) pmax = std::max(pmax, particular_amp(n - 1 + q));
@@ -105,27 +108,12 @@ ExactEngine::Root ExactEngine::first_grounded_root(bool watch_pass_through) cons
     const double skip = kResolutionSkip * tau_c_;
     const double zero =
         it >= kStallSteps ? 8 * std::numeric_limits<double>::epsilon() * (tab.s_max * sum_amp + offset_max + 2 * d_) : 0.0;
-    const auto step_of = [&](double f, double step) { return f <= zero ? std::max(step, skip) : step; };
-    double h = kInf;
-    int which = -1;
-    Jet jw{};  // (read only once a step has chosen it)
-    for (int k = 0; k < functions; ++k) {
-      const double f = value(k), f1 = rate(k);
-      if (f <= zero) {
-        const Jet jk = jet_of(k);
-        if (at_root(jk.d[0] - zero, jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
-      }
-      if (h < kInf && f > 0 && f + h * (f1 - 0.5 * m2 * h) > 0) continue;  // clear over the best step so far
-      const double hq = step_of(f, quadratic_step(f, f1, -0.5 * m2));
-      if (!(hq < h)) continue;
-      const Jet jk = jet_of(k);
-      const double hk = step_of(jk.d[0], safe_step(jk, kInf));
-      if (hk < h) {
-        h = hk;
-        which = k;
-        jw = jk;
-      }
-    }
+    const auto free = [](int) { return false; };  // (no holds above a plate)
+    const StepChoice c = shortest_safe_step(functions, m2, zero, skip, shq_.data(), value, rate, jet_of, free);
+    if (c.root_now) return {Root::Found, tau, c.which};
+    const double h = c.h;
+    const int which = c.which;
+    const Jet& jw = c.jet;
     if (h == kInf) return {Root::None, kInf, 0};
     if (h == skip && jw.d[0] <= zero) ++counters_.resolution_skips;
     if (jw.root_upper() - h <= 1e-15 * (tau + tau_c_)) return {Root::Found, tau + h, which};
@@ -139,7 +127,7 @@ void ExactEngine::predict_grounded() {
   double reach = 0.0, offset_max = 0.0;
   for (int j = 0; j < 2 * n - 1; ++j) reach += gamp0_[j];  // (entries beyond belong to an earlier, larger cluster)
   for (int q = 0; q < n; ++q) {
-    const double p = sine_ ? std::hypot(gP_re_[n - 1 + q], gP_im_[n - 1 + q]) : 0.0;
+    const double p = sine_ ? gP_abs_[n - 1 + q] : 0.0;
     offset_max = std::max(offset_max, grounded_offset(n - 1 + q) + p);
   }
   const bool watch = tables_[2 * n].s_max * reach + offset_max >= d_;

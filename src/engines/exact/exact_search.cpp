@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "engines/exact/step_choice.hpp"
 #include "engines/exact/taylor_bounds.hpp"
 #include "engines/free_flight.hpp"
 #include "engines/plate_flight.hpp"
@@ -15,6 +16,8 @@
 namespace granchain {
 
 using taylor::Jet;
+using taylor::StepChoice;
+using taylor::shortest_safe_step;
 using taylor::at_root;
 using taylor::quadratic_step;
 using taylor::safe_step;
@@ -196,12 +199,6 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
       jk.mP = bP;
       return jk;
     };
-    // Quadratic steps first (cheap, from x and x' with the common m2); the full bound can only
-    // lengthen a step, so it is worked out only for functions whose quadratic step is shorter
-    // than the best step so far.
-    double* hq = shq_.data();
-    double h = kInf;
-    int which = -1;
     // Held pairs (see merge) take no part until their hold ends; the step stops there.
     double hold_end = kInf;
     auto held = [&](int k) {
@@ -218,56 +215,13 @@ ExactEngine::Root ExactEngine::first_internal_root(int lo, bool watch_pass_throu
     const double skip = kResolutionSkip * tau_c_;
     const double zero =
         it >= kStallSteps ? 8 * std::numeric_limits<double>::epsilon() * (tab.s_max * sum_amp + d_) : 0.0;
-    auto step_of = [&](double f, double step) { return f <= zero ? std::max(step, skip) : step; };
-    // The quadratic bound of function k: concave, so positive over [0, H] when positive at H.
     auto value = [&](int k) { return k < M ? x[k] : d_ - x[k - M]; };
     auto rate = [&](int k) { return k < M ? xd[k] : -xd[k - M]; };
-    auto quadratic_clear = [&](int k, double H) {
-      const double f = value(k);
-      return f > 0 && f + H * (rate(k) - 0.5 * m2 * H) > 0;
-    };
-    constexpr double kUnknown = -1.0;  // quadratic step not worked out: longer than some step
-    for (int k = 0; k < functions; ++k) {
-      if (held(k)) {
-        hq[k] = kInf;
-        continue;
-      }
-      const double f = value(k), f1 = rate(k);
-      if (f <= zero) {
-        const Jet jk = jet_of(k);
-        if (at_root(jk.d[0] - zero, jk.d[1], jk.d[2], jk.d[3])) return {Root::Found, tau, k};
-      }
-      if (h < kInf && quadratic_clear(k, h)) {
-        hq[k] = kUnknown;
-        continue;
-      }
-      hq[k] = step_of(f, quadratic_step(f, f1, -0.5 * m2));
-      if (hq[k] < h) {
-        h = hq[k];
-        which = k;
-      }
-    }
-    Jet jw;
-    if (which >= 0) {
-      jw = jet_of(which);
-      h = step_of(jw.d[0], safe_step(jw, kInf));
-      for (int k = 0; k < functions; ++k) {
-        if (k == which) continue;
-        if (hq[k] == kUnknown) {
-          if (quadratic_clear(k, h)) continue;
-          hq[k] = step_of(value(k), quadratic_step(value(k), rate(k), -0.5 * m2));
-        }
-        if (!(hq[k] < h) || hq[k] == kInf) continue;
-        const Jet jk = jet_of(k);
-        if (jk.d[0] > 0 && jk.lower_positive(h)) continue;  // proven positive over the whole step
-        const double hk = step_of(jk.d[0], safe_step(jk, h));
-        if (hk < h) {
-          h = hk;
-          which = k;
-          jw = jk;
-        }
-      }
-    }
+    const StepChoice c = shortest_safe_step(functions, m2, zero, skip, shq_.data(), value, rate, jet_of, held);
+    if (c.root_now) return {Root::Found, tau, c.which};
+    const double h = c.h;
+    const int which = c.which;
+    const Jet& jw = c.jet;
     if (hold_end < kInf && tau + h >= hold_end) {  // no root before the first hold ends: go there
       tau = hold_end;
       continue;
