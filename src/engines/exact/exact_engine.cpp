@@ -95,7 +95,7 @@ ExactEngine::ExactEngine(const ChainParameters& p, const ChainState& initial, Fl
     if (audit_) throw std::invalid_argument("ExactEngine: the audit does not cover a vibrating plate");
     sine_ = plate_->kind() == DriveKind::Sine;
     start_piece(now_);
-    for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_, &gc_re_, &gc_im_, &gP_re_, &gP_im_, &gP_abs_})
+    for (auto* v : {&gy0_, &gyd0_, &gamp0_, &gx_, &gxd_, &gy_, &gyd_, &gc_re_, &gc_im_, &gP_re_, &gP_im_, &gP_abs_, &gf_, &gfd_})
       v->assign(2 * static_cast<std::size_t>(n_), 0.0);
     // The searches' scratch for a mirror cluster of up to 2N particles (2N - 1 modes).
     smode_.assign(kTaylorOrder * 2 * static_cast<std::size_t>(n_), 0.0);

@@ -304,7 +304,7 @@ class ExactEngine final : public Engine {
   // |P_i|; W of ground_zdot.
   std::vector<double> gc_re_, gc_im_, gP_re_, gP_im_, gP_abs_;
   double gW_re_ = 0, gW_im_ = 0;
-  mutable std::vector<double> gx_, gxd_, gy_, gyd_, gxr_, gxdr_, gv_;  // scratch
+  mutable std::vector<double> gx_, gxd_, gy_, gyd_, gxr_, gxdr_, gv_, gf_, gfd_;  // scratch
 
   // --- audit (exact_audit.cpp) ---
   static constexpr int kAuditInstants = 2;

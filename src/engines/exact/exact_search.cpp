@@ -80,6 +80,7 @@ ExactEngine::Root ExactEngine::first_root(const EdgeFunction& fn, double sigma_m
       const EdgeTerm& term = fn.term[k];
       const double tau = term.tau0 + sigma;
       for (int j = 0; j < term.table->M; ++j) {
+        if (term.y0[j] == 0.0 && term.yd0[j] == 0.0) continue;  // at rest for ever: adds nothing
         const ModeConstants& mc = term.table->modes[j];
         double y, yd;
         mc.evolve(term.y0[j], term.yd0[j], tau, y, yd);
@@ -128,6 +129,11 @@ void ExactEngine::mode_jets(const ClusterModeTable& tab, const double* y0, const
                             double* ampP, double& sum2, double& sum_amp) {
   const int M = tab.M;
   for (int j = 0; j < M; ++j) {
+    if (y0[j] == 0.0 && yd0[j] == 0.0) {  // a mode at rest stays exactly at rest (a grounded cluster's odd modes)
+      for (int n = 0; n < P; ++n) yn[n * M + j] = 0.0;
+      amp2[j] = ampP[j] = 0.0;
+      continue;
+    }
     const ModeConstants& mc = tab.modes[j];
     double y, yd;
     mc.evolve(y0[j], yd0[j], tau, y, yd);
