@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "model/plate_motion.hpp"
 #include "simulation/driven_run.hpp"

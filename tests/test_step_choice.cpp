@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -25,7 +27,7 @@ struct Wave {
   Jet jet(double s) const {
     Jet j;
     double wn = 1.0;
-    for (int n = 0; n < P; ++n, wn *= w) j.d[n] = a * wn * std::sin(w * s + phi + n * M_PI / 2);
+    for (int n = 0; n < P; ++n, wn *= w) j.d[n] = a * wn * std::sin(w * s + phi + n * std::numbers::pi / 2);
     j.d[0] += c;
     j.m2 = std::abs(a) * w * w;
     j.mP = std::abs(a) * std::pow(w, P);
@@ -70,7 +72,7 @@ Family random_family(std::mt19937_64& rng, int n) {
   for (int k = 0; k < n; ++k) {
     const double a = 0.2 + u(rng), c = a * (0.3 + 1.2 * u(rng));  // reaches zero when c < a
     Wave g{c, a, 0.5 + 4.0 * u(rng), 0.0};
-    do g.phi = 2 * M_PI * u(rng);
+    do g.phi = 2 * std::numbers::pi * u(rng);
     while (!(g.at(0.0) > 0.05 * a));  // every function starts above zero
     fam.f.push_back(g);
   }

@@ -15,9 +15,6 @@ namespace granchain {
 using taylor::Jet;
 using taylor::StepChoice;
 using taylor::shortest_safe_step;
-using taylor::at_root;
-using taylor::quadratic_step;
-using taylor::safe_step;
 using taylor::P;
 
 // As first_internal_root, over the mirror modes with the particular solution added, watching the
