@@ -111,12 +111,20 @@ py::dict sweep(const py::kwargs& kwargs) {
   std::vector<char> reused(points.size(), 0);
   std::unique_ptr<ResultsStore> store;
   std::vector<std::size_t> todo;
+  std::vector<std::pair<std::string, std::string>> failures;
   {
     py::gil_scoped_release nogil;
     std::unordered_set<std::string> stored;
     if (!q.db.empty()) {
       store = std::make_unique<ResultsStore>(q.db);
       stored = store->point_keys();
+      // Hard spheres that collapsed at a point in an earlier sweep: failed, and not run again.
+      const auto collapsed = store->collapsed_points();
+      for (const SweepPoint& p : points)
+        if (const auto it = collapsed.find(p.key); it != collapsed.end()) {
+          stored.insert(p.key);
+          failures.emplace_back(p.key, it->second.message + " (stored as a collapse)");
+        }
     }
     todo = points_to_run(points, stored);
     std::vector<char> to_run(points.size(), 0);
@@ -133,11 +141,11 @@ py::dict sweep(const py::kwargs& kwargs) {
   }
   std::size_t n_reused = static_cast<std::size_t>(std::count(reused.begin(), reused.end(), 1));
 
-  std::vector<std::pair<std::string, std::string>> failures;
   std::size_t inserted = 0;
-  const PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  const PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError* collapse) {
     const std::size_t i = static_cast<std::size_t>(&p - points.data());
     if (!r) {
+      if (collapse && store) store->insert_collapsed_point(p.key, ResultsStore::collapsed_point(*collapse));
       failures.emplace_back(p.key, error);
       return;
     }

@@ -37,7 +37,7 @@ std::map<std::string, RunResult> run_points(const std::vector<SweepPoint>& point
   std::vector<std::size_t> todo(points.size());
   for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   std::map<std::string, RunResult> out;
-  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError*) {
     ASSERT_NE(r, nullptr) << error;
     out[p.key] = *r;
   });
@@ -149,7 +149,7 @@ TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
   ASSERT_EQ(points.size(), 2u);
   std::vector<std::size_t> todo = {0, 1};
   int ok = 0, failed = 0;
-  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError*) {
     if (r) {
       ++ok;
       EXPECT_EQ(p.spec.params.N, 3);
@@ -175,7 +175,7 @@ TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
 TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e7"}, {"T", "400"}}));
   ASSERT_EQ(points.size(), 1u);
-  SweepRunner runner(points, {0}, [](const SweepPoint&, const RunResult* r, const std::string& error) { ASSERT_NE(r, nullptr) << error; });
+  SweepRunner runner(points, {0}, [](const SweepPoint&, const RunResult* r, const std::string& error, const InelasticCollapseError*) { ASSERT_NE(r, nullptr) << error; });
   runner.set_point_progress_every(0.001);
   std::vector<SweepProgress> reports;
   runner.run(1, [&](const SweepProgress& p) { reports.push_back(p); }, 0.01);
@@ -199,7 +199,7 @@ TEST(SweepRunner, ATimeLimitSkipsPointsThatCannotEndWithinIt) {
   ASSERT_EQ(points.size(), 4u);
   for (std::size_t i = 0; i < points.size(); ++i) points[i].cost = i % 2 == 0 ? 1e6 : 1e-3;
   std::vector<std::size_t> ran;
-  SweepRunner runner(points, {0, 1, 2, 3}, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  SweepRunner runner(points, {0, 1, 2, 3}, [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError*) {
     ASSERT_NE(r, nullptr) << error;
     ran.push_back(static_cast<std::size_t>(&p - points.data()));
   });
@@ -212,7 +212,7 @@ TEST(SweepRunner, ATimeLimitSkipsPointsThatCannotEndWithinIt) {
   EXPECT_EQ(points_longer_than(points, {0, 1, 2, 3}, 3600.0), (std::vector<std::size_t>{0, 2}));
   EXPECT_TRUE(points_longer_than(points, {0, 1, 2, 3}, 0.0).empty());
   // Without a limit every point is handed out.
-  SweepRunner all(points, {0, 1, 2, 3}, [](const SweepPoint&, const RunResult*, const std::string&) {});
+  SweepRunner all(points, {0, 1, 2, 3}, [](const SweepPoint&, const RunResult*, const std::string&, const InelasticCollapseError*) {});
   all.run(1);
   EXPECT_EQ(all.not_started(), 0u);
 }

@@ -404,18 +404,20 @@ TEST_F(SweepCli, ATimeLimitLeavesWhatCannotEndInItForARepeat) {
   EXPECT_NE(bad.err.find("--time-limit = '2x' is not a duration"), std::string::npos) << bad.err;
 }
 
-// The group beyond on tiny grids: its three figures and reports exist, the forms are compared
-// where four k are fitted, the hard-sphere launches collapse, and a repeat reuses every stored
-// count and run.
+// The group beyond on tiny grids: its four figures and reports exist, the forms are compared
+// where four k are fitted, the hard-sphere launches collapse, the hard column collapses below its
+// threshold and runs above it, and a repeat reuses every stored count, run and collapse.
 TEST_F(SweepCli, SmokePresetDrawsTheGroupBeyond) {
   const CliResult r = run("reproduce --figure beyond --preset smoke --out figs -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"limit-free.png", "limit-free.pdf", "limit-driven.png", "intervals.png", "report-limit-free.md",
-                        "report-limit-driven.md", "report-intervals.md", "report-beyond.md"})
+  for (const char* f : {"limit-free.png", "limit-free.pdf", "limit-driven.png", "intervals.png", "limit-hard.png", "report-limit-free.md",
+                        "report-limit-driven.md", "report-intervals.md", "report-limit-hard.md", "report-beyond.md"})
     EXPECT_TRUE(fs::exists(dir_ / "figs" / f)) << f;
   const std::string beyond = slurp(dir_ / "figs/report-beyond.md");
-  for (const char* s : {"| limit-free |", "| limit-driven |", "| intervals |", "Local exponent:", "Verdict:", "### Hard spheres, e = 0.3: 20 of 20 launches collapse",
-                        "collapse events per launch"})
+  for (const char* s : {"| limit-free |", "| limit-driven |", "| intervals |", "| limit-hard |", "Local exponent:", "Verdict:",
+                        "### Hard spheres, e = 0.3: 20 of 20 launches collapse", "collapse events per launch",
+                        "N = 10, initial state: every replica collapses at e ≤ 0.5, none at e ≥ 0.6",
+                        "N = 10, soft start (k = 1e8): every replica collapses at e ≤ 0.5, none at e ≥ 0.6"})
     EXPECT_NE(beyond.find(s), std::string::npos) << s;
   EXPECT_EQ(beyond.find("failed"), std::string::npos) << beyond.substr(0, 800);
   const auto counts = query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs");
@@ -423,6 +425,11 @@ TEST_F(SweepCli, SmokePresetDrawsTheGroupBeyond) {
   const CliResult again = run("reproduce --figure limit-driven --preset smoke --out figs");
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.err.find("0 to run"), std::string::npos) << again.err;
+  // The hard spheres' collapses are stored outcomes: a repeat runs nothing.
+  EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapsed_points"), 4);
+  const CliResult hard = run("reproduce --figure limit-hard --preset smoke --out figs");
+  ASSERT_EQ(hard.exit_code, 0) << hard.err;
+  EXPECT_NE(hard.err.find("0 to run"), std::string::npos) << hard.err;
   ASSERT_EQ(run("reproduce --figure limit-free --preset smoke --out figs -q").exit_code, 0);
   EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs"), counts);
 }
@@ -508,4 +515,59 @@ TEST_F(SweepCli, TraceFollowsTheRunsTrajectoryAndDrawsIt) {
   EXPECT_EQ(run("trace --from 2 --to 1").exit_code, 2);
   EXPECT_EQ(run("trace --engine hard").exit_code, 2);
   EXPECT_EQ(run("trace --setup moon").exit_code, 2);
+}
+
+// Hard spheres that collapse at a point are that point's outcome: kept in collapsed_points (no run,
+// no n_coll), not run again by a repeated sweep, still reported with exit 3; merged with the runs,
+// and a collapse against a run of the same identity is a conflict.
+TEST_F(SweepCli, HardSphereCollapsesAreStoredAsOutcomesAndNotRunAgain) {
+  // N = 25 on the thermal floor: e = 0.6 collapses in the first fall, e = 0.9 runs (docs/beyond.md §6).
+  const std::string grid = "sweep --engine hard --N 25 --e 0.6,0.9 --T 20 --replicas 2 -q --db hard.db";
+  const CliResult first = run(grid);
+  EXPECT_EQ(first.exit_code, 3) << first.err;
+  EXPECT_NE(first.err.find("hard spheres collapsed, kept as a collapse (no n_coll)"), std::string::npos) << first.err;
+  EXPECT_EQ(query(dir_ / "hard.db", "SELECT count(*) FROM runs"), 2);
+  EXPECT_EQ(query(dir_ / "hard.db", "SELECT count(*) FROM collapsed_points WHERE point_key LIKE '% e=0.6 %' AND t > 0 AND t < 20 "
+                                    "AND collisions >= 1000 AND first_particle >= 1 AND last_particle <= 25"),
+            2);
+  const CliResult again = run(grid);
+  EXPECT_EQ(again.exit_code, 3) << again.err;
+  EXPECT_NE(again.err.find("kept in hard.db as a collapse"), std::string::npos) << again.err;
+  EXPECT_EQ(std::count(again.err.begin(), again.err.end(), '\n'), 2) << again.err;
+  EXPECT_EQ(query(dir_ / "hard.db", "SELECT count(*) FROM collapsed_points"), 2);
+  const CliResult dry = run("sweep --engine hard --N 25 --e 0.6,0.9 --T 20 --replicas 2 --db hard.db --dry-run");
+  EXPECT_EQ(dry.exit_code, 0) << dry.err;
+  std::size_t marked = 0;
+  for (std::size_t at = dry.out.find("(stored: collapsed)"); at != std::string::npos; at = dry.out.find("(stored: collapsed)", at + 1)) ++marked;
+  EXPECT_EQ(marked, 2u) << dry.out;
+
+#if defined(GRANCHAIN_WITH_MPI) && defined(GRANCHAIN_MPIEXEC)
+  // Over MPI ranks the collapse crosses from a rank to rank 0 and is stored the same.
+  const std::string mpi = std::string("env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 '") + GRANCHAIN_MPIEXEC +
+                          "' --oversubscribe -np 3 '" + GRANCHAIN_BINARY + "' sweep --engine hard --N 25 --e 0.6,0.9 --T 20 "
+                          "--replicas 2 -q --threads 1 --db mpi.db";
+  const int rc = std::system(("cd '" + dir_.string() + "' && " + mpi + " > mpi.txt 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 3) << slurp(dir_ / "mpi.txt");
+  const auto collapses = [&](const char* store) {
+    return query(dir_ / store, "SELECT count(*) * 1000000000 + CAST(sum(t) * 1e6 AS INTEGER) + sum(collisions) FROM collapsed_points");
+  };
+  EXPECT_EQ(collapses("mpi.db"), collapses("hard.db"));
+  EXPECT_EQ(query(dir_ / "mpi.db", "SELECT count(*) FROM runs"), 2);
+#endif
+  const CliResult merged = run("merge --into all.db hard.db");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_NE(merged.out.find("2 collapsed hard-sphere points added, 0 already there"), std::string::npos) << merged.out;
+  EXPECT_EQ(query(dir_ / "all.db", "SELECT count(*) FROM collapsed_points"), 2);
+  const CliResult twice = run("merge --into all.db hard.db");
+  EXPECT_NE(twice.out.find("0 collapsed hard-sphere points added, 2 already there"), std::string::npos) << twice.out;
+  // The same identity stored as a run in the target and as a collapse in the source.
+  sqlite3* db = nullptr;
+  sqlite3_open((dir_ / "hard.db").c_str(), &db);
+  sqlite3_exec(db, "UPDATE collapsed_points SET point_key = (SELECT point_key FROM run_points LIMIT 1) WHERE rowid = "
+                   "(SELECT min(rowid) FROM collapsed_points)",
+               nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  const CliResult conflict = run("merge --into all.db hard.db");
+  EXPECT_EQ(conflict.exit_code, 2) << conflict.err;
+  EXPECT_NE(conflict.err.find("and a collapse at t ="), std::string::npos) << conflict.err;
 }

@@ -46,9 +46,12 @@ int execute_merge(const std::shared_ptr<MergeFlags>& impl_) {
   try {
     const MergeReport r = merge_stores(impl_->into, impl_->sources);
     if (!impl_->quiet)
-      fmt::print("merged {} store{} into {}: {} runs added, {} already there; {} collapse counts added, {} already there\n",
+      fmt::print("merged {} store{} into {}: {} runs added, {} already there; {} collapse counts added, {} already there{}\n",
                  impl_->sources.size(), impl_->sources.size() == 1 ? "" : "s", impl_->into, r.runs_added,
-                 r.runs_already_there, r.collapse_added, r.collapse_already_there);
+                 r.runs_already_there, r.collapse_added, r.collapse_already_there,
+                 r.collapsed_added + r.collapsed_already_there > 0
+                     ? fmt::format("; {} collapsed hard-sphere points added, {} already there", r.collapsed_added, r.collapsed_already_there)
+                     : "");
     return kExitOk;
   } catch (const MergeWriteError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());

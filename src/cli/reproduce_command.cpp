@@ -181,10 +181,12 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  all                      every one of them in this order, and report-all.md\n"
       "Beyond the paper (docs/beyond.md):\n"
       "  limit-free               free-space n_tot(k) at N = 10, 25, 50, e = 0.3, 0.5: local exponents, candidate forms\n"
-      "  limit-driven             driven n_coll(k) at N = 25, e = 0.1..0.5: local exponents, candidate forms\n"
+      "  limit-driven             driven n_coll(k) at N = 25 and 50, e = 0.1..0.5: local exponents, candidate forms\n"
       "  intervals                collision sequences of N = 25 collapses: hard-sphere approach, soft collapse events\n"
-      "  beyond                   these three, and report-beyond.md (quick: k to 1e9/1e10; paper: free to 1e13,\n"
-      "                           driven to 1e12 with T = 1e4)\n"
+      "  limit-hard               the driven column's hard-sphere limit: where hard spheres collapse (from the initial\n"
+      "                           state and from the soft column's), soft n_coll(k) to 1e30 against the hard value\n"
+      "  beyond                   these four, and report-beyond.md (quick: k to 1e9/1e10; paper: free to 1e20,\n"
+      "                           driven to 1e16 with T = 1e4, the hard-sphere limit to 1e30)\n"
       "Other drives (docs/drives.md):\n"
       "  drives-onset             e_c1, e_c2 for N = 10..100 against 1/N on the thermal floor and three vibrating\n"
       "                           plates (sine, sawtooth, quadratic), A/N fits per drive, one A for all?\n"
@@ -199,7 +201,7 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.\n" +
       exit_codes_help("2 bad input (nothing run), 3 a run turned unphysical, 4 a store or output could not be written, 75 "
                       "--time-limit left runs for a repeat of the command"));
-  sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, beyond, or drives-onset, drives-ncoll, drives-profiles, drives; default fig5");
+  sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, limit-hard, beyond, or drives-onset, drives-ncoll, drives-profiles, drives; default fig5");
   sub_->add_option("--preset", impl_->preset, "quick (default), paper or smoke (a pipeline check)");
   CLI::Option* db_option = sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   CLI::Option* out_option = sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");

@@ -211,28 +211,40 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   std::vector<std::size_t> todo;
   std::size_t already = 0;
   int code = kExitOk;
+  // Points whose hard spheres collapsed in an earlier sweep: stored as collapses, not run again.
+  std::map<std::string, ResultsStore::CollapsedPoint> collapsed;
   if (rank0) {
     try {
       std::unordered_set<std::string> done;
+      const auto settled = [&](ResultsStore& s) {
+        done = s.point_keys();
+        collapsed = s.collapsed_points();
+        for (const auto& [key, c] : collapsed) done.insert(key);
+      };
       if (impl.dry_run) {
         if (access(db_path.c_str(), F_OK) == 0) {
           try {
-            done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
+            ResultsStore reader(db_path, ResultsStore::Access::ReadOnly);
+            settled(reader);
           } catch (const StoreError&) {  // a version-1 store is read as the first write would: upgraded
-            done = ResultsStore(db_path).point_keys();
+            ResultsStore writer(db_path);
+            settled(writer);
           }
         }
       } else {
         // With a time limit, points that no invocation can fit in it are refused before the store
         // is opened for writing (or created), so nothing is written.
         if (time_limit > 0) {
-          if (access(db_path.c_str(), F_OK) == 0) done = ResultsStore(db_path, ResultsStore::Access::ReadOnly).point_keys();
+          if (access(db_path.c_str(), F_OK) == 0) {
+            ResultsStore reader(db_path, ResultsStore::Access::ReadOnly);
+            settled(reader);
+          }
           const std::vector<std::size_t> longer = points_longer_than(points, points_to_run(points, done), time_limit);
           if (!longer.empty()) code = fail(time_limit_too_short_message(points, longer, time_limit), kExitBadInput);
         }
         if (code == kExitOk) {
           store = std::make_unique<ResultsStore>(db_path);
-          done = store->point_keys();
+          settled(*store);
         }
       }
       todo = points_to_run(points, done);
@@ -256,7 +268,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       for (std::size_t i : todo) to_run[i] = true;
       for (std::size_t i = 0; i < points.size(); ++i)
         fmt::print("{:6d}  {:10.3g}  {:7d}  {}  {}{}\n", i + 1, points[i].cost, points[i].replica, points[i].spec.seed,
-                   points[i].key, to_run[i] ? "" : "  (stored)");
+                   points[i].key, to_run[i] ? "" : collapsed.count(points[i].key) ? "  (stored: collapsed)" : "  (stored)");
     }
     return kExitOk;
   }
@@ -267,9 +279,14 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   const bool show_progress = rank0 && (impl.progress_lines || !impl.quiet);
   const double every = impl.progress_every > 0 ? impl.progress_every : (tty ? 0.5 : 10.0);
   const SweepProgressPrinter printer(tty, "sweep");
-  std::vector<std::string> failures;
+  std::vector<std::string> failures, collapsed_now;
   std::size_t inserted = 0;
-  PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError* collapse) {
+    if (collapse) {
+      store->insert_collapsed_point(p.key, ResultsStore::collapsed_point(*collapse));
+      collapsed_now.push_back(fmt::format("{}: {}", p.key, error));
+      return;
+    }
     if (!r) {
       failures.push_back(fmt::format("{}: {}", p.key, error));
       return;
@@ -296,8 +313,17 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   if (!rank0) return world.broadcast(code);
 
   if (code == kExitOk) {
+    // A collapse of hard spheres is kept as the point's outcome (no n_coll): stored now, or before.
+    std::size_t collapsed_before = 0;
+    for (const SweepPoint& p : points)
+      if (const auto it = collapsed.find(p.key); it != collapsed.end()) {
+        fmt::print(stderr, "granchain: error: hard spheres collapsed (kept in {} as a collapse, no n_coll): {}: {}\n", db_path, p.key,
+                   it->second.message);
+        ++collapsed_before;
+      }
+    for (const auto& f : collapsed_now) fmt::print(stderr, "granchain: error: hard spheres collapsed, kept as a collapse (no n_coll): {}\n", f);
     for (const auto& f : failures) fmt::print(stderr, "granchain: error: point turned unphysical, not stored: {}\n", f);
-    if (!failures.empty()) code = kExitUnphysical;
+    if (!failures.empty() || !collapsed_now.empty() || collapsed_before > 0) code = kExitUnphysical;
     std::map<std::string, ResultsStore::PointSummary> summaries;
     if (!impl.quiet) {
       try {
@@ -325,7 +351,10 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       }
     }
     if (!impl.quiet)
-      fmt::print(stderr, "sweep: {} points stored now, {} were already there, {} failed; store {}\n", inserted, already,
+      fmt::print(stderr, "sweep: {} points stored now, {} were already there{}, {} failed; store {}\n", inserted, already,
+                 collapsed_now.size() + collapsed_before > 0
+                     ? fmt::format(", {} collapsed ({} now)", collapsed_now.size() + collapsed_before, collapsed_now.size())
+                     : "",
                  failures.size(), db_path);
     if (const std::size_t left = runner->not_started(); left > 0) {
       fmt::print(stderr, "sweep: --time-limit: {} points not started (estimated {} of one core); repeat the command to run them\n",

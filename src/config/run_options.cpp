@@ -103,6 +103,19 @@ const std::vector<Definition>& definitions() {
       tc.nullable = true;  // NULL for the soft engines
       d.push_back(std::move(tc));
     }
+    // Does the hard column collapse from its stationary state, or only in the first fall from the
+    // initial state? The transient at a large k brings the soft column there; the window is hard.
+    {
+      Definition start = real({"start-k", {}, "m g / d",
+                               "hard engine: the exact engine at this k runs the transient and the hard spheres start from its "
+                               "column (overlaps closed); 0: the hard engine runs from the initial state",
+                               "start-k = 0 (off) or start-k > 0 with transient > 0", shown(def.spec.engine.start_k), kUseDriven,
+                               EngineScope::Hard, false, "start_k", [](double x) { return x >= 0; }, "the hard-sphere engine's start"},
+                              I::EngineOption, [](auto& s) -> auto& { return s.engine.start_k; });
+      start.nullable = true;  // NULL where the hard engine runs from the initial state, and for the soft engines
+      start.acts_in = [](const RunSpec& s) { return s.engine.start_k > 0; };
+      d.push_back(std::move(start));
+    }
     d.push_back(real({"m", {}, "", "particle mass (unit of mass)", "m > 0", shown(def.spec.params.m), kUseDriven | kUseTrace, EngineScope::Any, false, "m",
                       [](double x) { return x > 0; }},
                      I::Physics, [](auto& s) -> auto& { return s.params.m; }));
@@ -248,6 +261,33 @@ void check_height_scale(const RunOptions& o, const std::map<std::string, RawValu
                            "resolve d to 1e-6", range, p.N, R));
 }
 
+// The soft start of the hard engine (--start-k): the exact engine runs the transient at start-k,
+// so the transient must exist, its contacts must be resolved by the exact engine's clock until the
+// transient ends, and a plate's period must last 10 of them (as resolve_drive asks of soft runs).
+void check_start_k(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
+  const double k = o.spec.engine.start_k;
+  if (!(k > 0)) return;
+  const RawValue& given = raw.at("start-k");
+  if (!(o.spec.transient > 0))
+    throw InputError(fmt::format("--start-k = {}{}: the exact engine runs the transient, and transient = 0; valid: --start-k with "
+                                 "--transient > 0",
+                                 given.text(), from_where(given)));
+  const ChainParameters& p = o.spec.params;
+  const double tau_c = contact_time(k, damping_constant(k, p.e, p.m), p.m);
+  if (!(tau_c >= shortest_resolved_time(o.spec.transient, true)))
+    value_out_of_range("start-k", given,
+                       fmt::format("0 < start-k <= {} at m = {}, e = {} and transient = {} (a contact must last 1e6 times the exact "
+                                   "engine's clock resolution at the transient's end)",
+                                   rounded_bound(largest_resolved_k(p.m, p.e, o.spec.transient, true), true), p.m, p.e,
+                                   o.spec.transient));
+  const double omega_max = 2.0 * std::numbers::pi / (10.0 * tau_c);
+  if (o.spec.drive.plate() && !(o.spec.drive.omega <= omega_max))
+    value_out_of_range("start-k", given,
+                       fmt::format("0 < start-k <= {} at omega = {}, e = {}, m = {} (the plate's period must last at least 10 contact "
+                                   "times of the soft start)",
+                                   rounded_bound(k * std::pow(omega_max / o.spec.drive.omega, 2), true), o.spec.drive.omega, p.e, p.m));
+}
+
 }  // namespace
 
 double default_measuring_time(int N) { return N < 50 ? 1e4 : 1e3; }
@@ -299,6 +339,7 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   check_contact_time(o, raw);
   check_height_scale(o, raw);
   run_table::resolve_drive(o, raw);
+  check_start_k(o, raw);
   // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
   if (!(o.spec.transient + o.spec.T <= 1e15))
     value_out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",

@@ -24,6 +24,10 @@ struct EngineChoice {
   EngineKind kind = EngineKind::Exact;  // the registry's first engine is the default
   double dt_factor = 100.0;             // time-stepped engines: dt = tau_c / dt_factor
   HardSphereOptions hard;               // the hard-sphere engine (k = infinity): TC model, collapse watch
+  // The hard-sphere engine started from a soft column (driven runs): the exact engine at this k
+  // runs the transient, and the hard spheres take over its state. 0: the hard engine runs from the
+  // initial state.
+  double start_k = 0.0;
   bool audit = false;                   // engines with an audit: check every overlap and gap between events (slow)
 };
 

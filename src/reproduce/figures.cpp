@@ -40,7 +40,9 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
     SweepDefinition def;
     def.raw["N"] = {b.N, ""};
     def.raw["e"] = {b.e, ""};
-    def.raw["k"] = {b.k, ""};
+    if (!b.k.empty()) def.raw["k"] = {b.k, ""};
+    if (!b.engine.empty()) def.raw["engine"] = {b.engine, ""};
+    if (!b.start_k.empty()) def.raw["start-k"] = {b.start_k, ""};
     def.raw["T"] = {b.T, ""};
     def.raw["T0"] = {b.T0, ""};
     if (b.drive != "thermal") {
@@ -128,8 +130,16 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label,
                                             ReproductionLog& log) {
   std::vector<std::string> failures;
+  // A point whose hard spheres collapsed is settled too: the collapse is its stored outcome (no run;
+  // a figure that wants it reads ResultsStore::collapsed_points).
+  const auto settled = [&](ResultsStore& store) {
+    std::unordered_set<std::string> keys = store.point_keys();
+    for (const auto& [key, c] : store.collapsed_points()) keys.insert(key);
+    return keys;
+  };
   if (o.stored_only) {
-    const std::vector<std::size_t> missing = points_to_run(points, ResultsStore(o.db, ResultsStore::Access::ReadOnly).point_keys());
+    ResultsStore reader(o.db, ResultsStore::Access::ReadOnly);
+    const std::vector<std::size_t> missing = points_to_run(points, settled(reader));
     if (missing.size() == points.size())
       throw NothingStored(fmt::format("none of its {} runs is in {} yet (--stored-only runs nothing)", points.size(), o.db));
     if (!o.quiet)
@@ -140,7 +150,7 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
   }
   ResultsStore store(o.db);
   std::vector<std::size_t> todo;
-  for (std::size_t i : points_to_run(points, store.point_keys())) {
+  for (std::size_t i : points_to_run(points, settled(store))) {
     if (log.failed_keys.count(points[i].key)) failures.push_back(points[i].key + ": turned unphysical earlier in this command");
     else todo.push_back(i);
   }
@@ -148,9 +158,11 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
     fmt::print(stderr, "reproduce {} ({}): {} runs, {} already in {}, {} to run on {} threads\n", label, o.preset, points.size(),
                points.size() - todo.size(), o.db, todo.size(), o.threads);
   if (todo.empty()) return failures;
-  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error) {
+  SweepRunner runner(points, todo, [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError* c) {
     if (r) {
       store.insert_sweep_point(*r, p.key, 1, p.replica);
+    } else if (c) {
+      store.insert_collapsed_point(p.key, ResultsStore::collapsed_point(*c));
     } else {
       failures.push_back(p.key + ": " + error);
       log.failed_keys.insert(p.key);
@@ -192,7 +204,11 @@ std::string draw_figure(const ReproduceFlags& o, const std::string& name, const 
 }
 
 std::string sweep_command(const GridBlock& b) {
-  std::string line = fmt::format("granchain sweep --N {} --e {} --k {} --T {} --T0 {}", b.N, b.e, b.k, b.T, b.T0);
+  std::string line = fmt::format("granchain sweep --N {} --e {}", b.N, b.e);
+  if (!b.engine.empty()) line += " --engine " + b.engine;
+  if (!b.k.empty()) line += " --k " + b.k;
+  if (!b.start_k.empty()) line += " --start-k " + b.start_k;
+  line += fmt::format(" --T {} --T0 {}", b.T, b.T0);
   if (b.drive != "thermal") line += fmt::format(" --drive {} --A {} --omega {}", b.drive, b.A, b.omega);
   if (b.replicas > 1) line += fmt::format(" --replicas {}", b.replicas);
   return line;

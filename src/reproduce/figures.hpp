@@ -75,6 +75,8 @@ struct GridBlock {
   int replicas = 1;  // independent runs (seeds) per point
   // The drive (--drive, --A, --omega): the thermal floor, or a plate of amplitude A and frequency omega.
   std::string drive = "thermal", A = "", omega = "";
+  // --engine ("": the default, exact) and, for the hard engine (k empty), --start-k ("": none).
+  std::string engine = "", start_k = "";
 };
 // "granchain sweep --N ... --T0 ..." with --drive/--A/--omega for a plate and --replicas when > 1.
 std::string sweep_command(const GridBlock& b);
@@ -96,9 +98,9 @@ std::string preset_T(const ReproduceFlags& o, int N);
 // The points of all blocks, each key once, longest first. Throws InputError on a bad grid.
 std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
 
-// Runs the points the store does not hold yet on o.threads threads (progress on stderr unless
-// quiet) and stores each as it finishes; returns one line per point that turned unphysical (not
-// stored), for the figure's outcome. Throws StoreError, or TimeLimitReached.
+// Runs the points the store does not hold yet (as a run, or as hard spheres' collapse) on o.threads
+// threads (progress on stderr unless quiet) and stores each as it finishes, a collapse as a collapse;
+// returns one line per point that turned otherwise unphysical (not stored), for the figure's outcome. Throws StoreError, or TimeLimitReached.
 std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& points, const ReproduceFlags& o, const std::string& label,
                                             ReproductionLog& log);
 
@@ -151,6 +153,7 @@ std::vector<GridBlock> partial_condensation_grid(const ReproduceFlags& o);  // f
 std::vector<GridBlock> across_n_grid(const ReproduceFlags& o);              // fig6, fig7, fig9
 std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // table1
 std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o);          // limit-driven
+std::vector<GridBlock> hard_limit_grid(const ReproduceFlags& o);            // limit-hard
 std::vector<GridBlock> drives_grid(const ReproduceFlags& o);                // drives-onset (all N), drives-ncoll (N = 25)
 
 // The statements of Sec. III.B on the fine structure of n_coll(e) (N = 3..6) tested on these
@@ -178,6 +181,7 @@ FigureOutcome reproduce_drive_profiles(const ReproduceFlags& o, ReproductionLog&
 FigureOutcome reproduce_free_space_exponents(const ReproduceFlags& o, ReproductionLog& log);  // limit-free
 std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o);  // the counts limit-free reads
 FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o, ReproductionLog& log);      // limit-driven
+FigureOutcome reproduce_hard_limit(const ReproduceFlags& o, ReproductionLog& log);            // limit-hard
 FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o, ReproductionLog& log);   // intervals
 
 }  // namespace granchain

@@ -2,7 +2,7 @@
 // running a chosen set with its reports. The figures themselves live in sketch_figures.cpp (fig1,
 // fig2), ncoll_figures.cpp (fig3, fig4, fig5, fig8), across_n_figures.cpp (fig6, fig7, fig9,
 // table1), free_space_figures.cpp (fig10), and past the paper hard_limit_figures.cpp (limit-free,
-// limit-driven) and interval_figures.cpp (intervals).
+// limit-driven), interval_figures.cpp (intervals) and driven_hard_limit_figure.cpp (limit-hard).
 #include "reproduce/reproduction.hpp"
 
 #include <fmt/format.h>
@@ -35,6 +35,7 @@ const std::vector<FigureEntry>& figures() {
        free_space_exponent_specs},
       {"limit-driven", "beyond: driven n_coll as k -> infinity", reproduce_driven_exponents, driven_limit_grid, "beyond"},
       {"intervals", "beyond: collision-interval sequences", reproduce_collision_intervals, nullptr, "beyond"},
+      {"limit-hard", "beyond: the driven column's hard-sphere limit", reproduce_hard_limit, hard_limit_grid, "beyond"},
       {"drives-onset", "drives: e_c1, e_c2 against N per drive", reproduce_drive_onset, drives_grid, "drives"},
       {"drives-ncoll", "drives: n_coll(k) at N = 25 per drive", reproduce_drive_ncoll, drives_grid, "drives"},
       {"drives-profiles", "drives: density, temperature and centre of mass of the vibrated column", reproduce_drive_profiles, nullptr,

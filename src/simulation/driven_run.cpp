@@ -25,6 +25,14 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
+ChainState hard_sphere_start(ChainState s, const ChainParameters& p, const FloorDrive& floor) {
+  const PlateMotion* plate = floor.plate();
+  const double surface = plate != nullptr ? plate->z(s.t) : 0.0;
+  s.z[0] = std::max(s.z[0], surface + 0.5 * p.d);
+  for (std::size_t i = 1; i < s.z.size(); ++i) s.z[i] = std::max(s.z[i], s.z[i - 1] + p.d);
+  return s;
+}
+
 RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progress, double progress_every) {
   const auto wall0 = Clock::now();
   const double cpu0 = thread_cpu_seconds();
@@ -34,8 +42,18 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
 
   const auto floor = column_drive(spec.params, spec.drive, spec.seed);
   const ChainState initial = driven_column_initial_state(spec.params, spec.seed, spec.drive);
-  auto engine = make_engine(spec.engine, spec.params, initial, floor.get());
-  r.time_step = engine->time_quantum();
+  // A soft start (EngineChoice::start_k): the exact engine at start_k runs the transient, then the
+  // hard spheres take over. Both draw on the one drive, so the floor's random speeds run on.
+  const bool soft_start = engine_info(spec.engine.kind).hard_spheres && spec.engine.start_k > 0;
+  std::unique_ptr<Engine> engine;
+  if (soft_start) {
+    ChainParameters soft = spec.params;
+    soft.k = spec.engine.start_k;
+    engine = make_engine(EngineChoice{}, soft, initial, floor.get());
+  } else {
+    engine = make_engine(spec.engine, spec.params, initial, floor.get());
+  }
+  r.time_step = soft_start ? 0.0 : engine->time_quantum();
 
   // Samples at t0 + j*dt_s, j = 1..n; dt_s a whole number of engine steps so that a time-stepped
   // engine samples on its own grid.
@@ -75,6 +93,11 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     engine->advance_to(t, discard);
     report(t, true);
   }
+  EngineCounters before_switch{};
+  if (soft_start) {
+    before_switch = engine->counters();
+    engine = make_engine(spec.engine, spec.params, hard_sphere_start(engine->state(), spec.params, *floor), floor.get());
+  }
   for (std::int64_t j = 1; j <= n_samples; ++j) {
     const double t = std::min(t1, t0 + static_cast<double>(j) * dt_s);
     engine->advance_to(t, counter);
@@ -93,8 +116,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.n_coll_halves = counter.collision_rate_stationarity(spec.params.N);
   r.height_halves = sampler.height_stationarity();
   const EngineCounters c = engine->counters();
-  r.steps = c.steps;
-  r.events = c.contact_ends + c.floor_hits;
+  r.steps = c.steps + before_switch.steps;
+  r.events = c.contact_ends + c.floor_hits + before_switch.contact_ends + before_switch.floor_hits;
   r.wall_seconds = seconds_since(wall0);
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   // The audit evaluated every overlap, gap and the floor height at random instants between

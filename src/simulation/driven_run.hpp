@@ -9,6 +9,8 @@
 #include "analysis/blocking.hpp"
 #include "engines/engine_registry.hpp"
 #include "model/chain_parameters.hpp"
+#include "model/chain_state.hpp"
+#include "model/floor.hpp"
 #include "model/plate_motion.hpp"
 #include "observables/profile_sampler.hpp"
 
@@ -64,6 +66,13 @@ struct RunProgress {
   double wall_seconds = 0.0;
 };
 using ProgressCallback = std::function<void(const RunProgress&)>;
+
+// The hard spheres' start from a soft column's state: centres raised from the bottom up until no
+// pair overlaps and particle 1 does not overlap the floor or the plate, velocities kept. The
+// springs' energy is dropped with the overlaps: at large k, the column's weight compresses a
+// contact by N m g / k, and a collision in progress is finished by the hard engine's rule (its
+// approach speed times e).
+ChainState hard_sphere_start(ChainState soft, const ChainParameters& p, const FloorDrive& floor);
 
 // Runs the driven column; throws UnphysicalStateError if the dynamics becomes unphysical.
 // progress (if set) is called about every progress_every wall-clock seconds.

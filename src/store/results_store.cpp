@@ -340,6 +340,47 @@ std::unordered_set<std::string> ResultsStore::point_keys() {
   return keys;
 }
 
+ResultsStore::CollapsedPoint ResultsStore::collapsed_point(const InelasticCollapseError& c) {
+  return {c.time(), c.particle_a(), c.particle_b(), c.collisions(), c.what()};
+}
+
+bool ResultsStore::insert_collapsed_point(const std::string& key, const CollapsedPoint& c) {
+  bool inserted = false;
+  in_transaction([&]() -> std::int64_t {
+    SqlStatement run(db_, "SELECT 1 FROM run_points WHERE point_key = ? UNION ALL SELECT 1 FROM collapsed_points WHERE point_key = ?");
+    run.bind(1, key);
+    run.bind(2, key);
+    if (run.row()) return 0;
+    SqlStatement add(db_, "INSERT INTO collapsed_points(point_key, created_utc, code_version, t, first_particle, last_particle, "
+                          "collisions, message) VALUES(?,?,?,?,?,?,?,?)");
+    add.bind(1, key);
+    add.bind(2, utc_now());
+    add.bind(3, std::string(code_version()));
+    add.bind(4, c.t);
+    add.bind(5, static_cast<std::int64_t>(c.first_particle));
+    add.bind(6, static_cast<std::int64_t>(c.last_particle));
+    add.bind(7, static_cast<std::int64_t>(c.collisions));
+    add.bind(8, c.message);
+    add.run();
+    inserted = true;
+    return 0;
+  });
+  return inserted;
+}
+
+std::map<std::string, ResultsStore::CollapsedPoint> ResultsStore::collapsed_points() {
+  std::map<std::string, CollapsedPoint> out;
+  {
+    SqlStatement has(db_, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'collapsed_points'");
+    if (!has.row()) return out;
+  }
+  SqlStatement st(db_, "SELECT point_key, t, first_particle, last_particle, collisions, message FROM collapsed_points");
+  while (st.row())
+    out[st.column_text(0)] = CollapsedPoint{st.column_double(1), static_cast<int>(st.column_int(2)), static_cast<int>(st.column_int(3)),
+                                            static_cast<std::uint64_t>(st.column_int(4)), st.column_text(5)};
+  return out;
+}
+
 std::map<std::string, ResultsStore::PointSummary> ResultsStore::point_summaries() {
   std::map<std::string, PointSummary> out;
   SqlStatement st(db_, "SELECT p.point_key, r.id, r.n_coll, r.n_coll_err FROM run_points p JOIN runs r ON r.id = p.run_id");

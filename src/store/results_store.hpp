@@ -105,6 +105,20 @@ class ResultsStore {
   Stored insert_sweep_point(const RunResult& r, const std::string& key, std::uint64_t base_seed, int replica);
   // Keys of every stored point.
   std::unordered_set<std::string> point_keys();
+  // Hard spheres that collapsed at a sweep point (InelasticCollapseError): the point's outcome is
+  // kept in collapsed_points by its key, so that a repeated sweep does not run it again and a figure
+  // can tell a collapse from a point not yet run. It is not a run (no n_coll; nothing that reads runs
+  // sees it). Returns false, writing nothing, when the key is stored already (as a run or a collapse).
+  struct CollapsedPoint {
+    double t = 0;                        // when the engine stopped
+    int first_particle = 0, last_particle = 0;  // the collapsing particles (1-based)
+    std::uint64_t collisions = 0;        // collisions since the engine started, the collapse included
+    std::string message;                 // the engine's description
+  };
+  static CollapsedPoint collapsed_point(const InelasticCollapseError& c);
+  bool insert_collapsed_point(const std::string& key, const CollapsedPoint& c);
+  // Every collapsed point by key ({} for a store without the table: made before it existed).
+  std::map<std::string, CollapsedPoint> collapsed_points();
   struct PointSummary {
     std::int64_t id = 0;
     double n_coll = 0, n_coll_err = 0;  // NaN where the store holds NULL

@@ -237,6 +237,47 @@ void merge_collapse(sqlite3* target, sqlite3* source, const std::string& source_
   }
 }
 
+// Collapsed points (hard spheres that collapsed at a sweep point) by key: a key that the target
+// holds as a run, or as a collapse at another instant, is a conflict.
+void merge_collapsed_points(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
+                            MergeReport& report) {
+  if (!has_table(source, "collapsed_points")) return;
+  SqlStatement rows(source, "SELECT point_key, created_utc, code_version, t, first_particle, last_particle, collisions, message "
+                            "FROM collapsed_points ORDER BY point_key");
+  SqlStatement as_run(target, "SELECT run_id FROM run_points WHERE point_key = ?");
+  SqlStatement as_collapse(target, "SELECT t, collisions FROM collapsed_points WHERE point_key = ?");
+  SqlStatement insert(target, "INSERT INTO collapsed_points(point_key, created_utc, code_version, t, first_particle, last_particle, "
+                              "collisions, message) VALUES(?,?,?,?,?,?,?,?)");
+  while (rows.row()) {
+    const std::string key = rows.column_text(0);
+    as_run.bind(1, key);
+    const bool run = as_run.row();
+    const std::int64_t run_id = run ? as_run.column_int(0) : 0;
+    as_run.reset();
+    if (run)
+      throw MergeConflict(fmt::format("merge: conflicting results for point '{}': run {} of '{}', and a collapse at t = {} in '{}'; "
+                                      "nothing was merged",
+                                      key, run_id, target_path, rows.column_double(3), source_path));
+    as_collapse.bind(1, key);
+    if (as_collapse.row()) {
+      const bool same = as_collapse.column_double(0) == rows.column_double(3) && as_collapse.column_int(1) == rows.column_int(6);
+      const double t = as_collapse.column_double(0);
+      as_collapse.reset();
+      if (!same)
+        throw MergeConflict(fmt::format("merge: conflicting collapses for point '{}': t = {} in '{}', t = {} in '{}'; nothing was "
+                                        "merged",
+                                        key, t, target_path, rows.column_double(3), source_path));
+      ++report.collapsed_already_there;
+      continue;
+    }
+    as_collapse.reset();
+    for (int c = 0; c < 8; ++c) insert.bind_value(c + 1, rows.column_value(c));
+    insert.run();
+    insert.reset();
+    ++report.collapsed_added;
+  }
+}
+
 bool same_file(const std::string& a, const std::string& b) {
   struct stat sa {}, sb {};
   return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
@@ -256,6 +297,7 @@ MergeReport merge_into(const std::string& target, const std::vector<std::string>
       exec(src.db, "BEGIN");  // one consistent snapshot of the source
       merge_runs(db, src.db, path, target, report);
       merge_collapse(db, src.db, path, target, report);
+      merge_collapsed_points(db, src.db, path, target, report);
       exec(src.db, "COMMIT");
     }
     exec(db, kVersion1RunsToVersion2);  // rows merged from a version-1 source

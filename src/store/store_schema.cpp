@@ -90,6 +90,16 @@ CREATE TABLE IF NOT EXISTS collapse_runs(
   result_json TEXT NOT NULL
 );
 CREATE INDEX IF NOT EXISTS collapse_runs_by_point ON collapse_runs(setup, N, e, k);
+CREATE TABLE IF NOT EXISTS collapsed_points(
+  point_key TEXT PRIMARY KEY,
+  created_utc TEXT NOT NULL,
+  code_version TEXT NOT NULL,
+  t REAL NOT NULL,
+  first_particle INTEGER NOT NULL,
+  last_particle INTEGER NOT NULL,
+  collisions INTEGER NOT NULL,
+  message TEXT NOT NULL
+);
 CREATE TABLE IF NOT EXISTS collapse_realizations(
   run_id INTEGER NOT NULL REFERENCES collapse_runs(id) ON DELETE CASCADE,
   realization INTEGER NOT NULL,
@@ -149,6 +159,8 @@ std::string missing_schema_part(sqlite3* db, int version) {
     if (have.empty()) {
       // The first stores (version 1) may lack the later tables; opening them for writing adds them.
       if (version == 1 && table != "meta" && table != "runs" && table != "profiles") continue;
+      // collapsed_points came after version 3: a store without it has none (added when next written).
+      if (table == "collapsed_points") continue;
       missing = fmt::format("the table '{}'", table);
       break;
     }

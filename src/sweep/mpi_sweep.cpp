@@ -58,6 +58,11 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
       if (message.contains("result")) {
         const RunResult result = run_result_from_json(message.at("result"));
         runner.record(index, &result, "");
+      } else if (message.contains("collapse")) {
+        const nlohmann::json& c = message.at("collapse");
+        const InelasticCollapseError collapse(c.at("t").get<double>(), c.at("first").get<int>(), c.at("last").get<int>(),
+                                              c.at("collisions").get<std::uint64_t>(), message.at("error").get<std::string>());
+        runner.record(index, nullptr, collapse.what(), {}, &collapse);
       } else {
         runner.record(index, nullptr, message.at("error").get<std::string>());
       }
@@ -80,6 +85,9 @@ void work_for_rank0(const std::vector<SweepPoint>& points) {
     nlohmann::json message = {{"index", index}};
     try {
       message["result"] = run_result_to_json(run_driven_column(points.at(static_cast<std::size_t>(index)).spec));
+    } catch (const InelasticCollapseError& c) {
+      message["error"] = c.what();
+      message["collapse"] = {{"t", c.time()}, {"first", c.particle_a()}, {"last", c.particle_b()}, {"collisions", c.collisions()}};
     } catch (const std::exception& e) {
       message["error"] = e.what();
     }

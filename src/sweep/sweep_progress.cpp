@@ -17,7 +17,7 @@ std::string format_duration(double s) {
 
 void SweepProgressPrinter::operator()(const SweepProgress& p) const {
   const std::string line = fmt::format("{}: {}/{} {}{}, elapsed {}, ETA {}, {:.3g} collisions/s", label_, p.done, p.total, unit_,
-                                       p.failed ? fmt::format(" ({} failed)", p.failed) : "", format_duration(p.elapsed),
+                                       p.failed ? fmt::format(" ({} failed{})", p.failed, p.collapsed ? fmt::format(", {} of them hard spheres' collapse", p.collapsed) : "") : "", format_duration(p.elapsed),
                                        p.final ? "0 s" : format_duration(p.eta), p.collisions_per_second);
   if (tty_) {
     fmt::print(stderr, "\r{:<100}{}", line, p.final ? "\n" : "");

@@ -77,11 +77,12 @@ double SweepRunner::not_started_cost() const {
 }
 
 void SweepRunner::record(std::size_t index, const RunResult* result, const std::string& error,
-                         const std::function<void()>& under_lock) {
+                         const std::function<void()>& under_lock, const InelasticCollapseError* collapse) {
   std::lock_guard lock(mutex_);
   if (under_lock) under_lock();
   ++done_;
   if (!result) ++failed_;
+  if (collapse) ++collapsed_;
   done_cost_ += points_[index].cost;
   if (result) {
     finished_events_ += result->events;
@@ -90,7 +91,7 @@ void SweepRunner::record(std::size_t index, const RunResult* result, const std::
   }
   if (sink_error_) return;  // the store already failed: nothing more is written
   try {
-    sink_(points_[index], result, error);
+    sink_(points_[index], result, error, collapse);
   } catch (...) {
     sink_error_ = std::current_exception();
     stop_ = true;
@@ -102,6 +103,7 @@ SweepProgress SweepRunner::progress() const {
   SweepProgress p;
   p.done = done_;
   p.failed = failed_;
+  p.collapsed = collapsed_;
   p.total = todo_.size();
   p.elapsed = wall_clock_seconds() - start_;
   double covered = done_cost_;
@@ -137,6 +139,8 @@ void SweepRunner::worker(int slot) {
     } catch (const RunCancelled&) {  // watch(): abandoned, not recorded
       clear_live();
       return;
+    } catch (const InelasticCollapseError& c) {  // hard spheres: an outcome of the point
+      record(*index, nullptr, c.what(), clear_live, &c);
     } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point
       record(*index, nullptr, e.what(), clear_live);
     }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "engines/engine.hpp"
 #include "simulation/cancellation.hpp"
 #include "sweep/sweep_grid.hpp"
 
@@ -21,6 +22,7 @@ namespace granchain {
 struct SweepProgress {
   std::size_t done = 0;       // points finished in this invocation (failed ones included)
   std::size_t failed = 0;
+  std::size_t collapsed = 0;  // of the failed: hard spheres' inelastic collapse (stored as the point's outcome)
   std::size_t total = 0;      // points to run in this invocation
   double elapsed = 0.0;       // wall seconds
   // Wall seconds left: elapsed × (cost left) / (cost done), the costs from the cost model, the
@@ -32,9 +34,11 @@ struct SweepProgress {
 };
 
 // Called for every finished point, never concurrently: result is null when the point failed,
-// with the reason in error. May throw (a store that cannot be written): the sweep then stops
+// with the reason in error, and collapse set when the failure was hard spheres' inelastic collapse
+// (an outcome that the store keeps, ResultsStore::insert_collapsed_point). May throw (a store that cannot be written): the sweep then stops
 // handing out points and run() rethrows once the running points are done.
-using PointSink = std::function<void(const SweepPoint& point, const RunResult* result, const std::string& error)>;
+using PointSink = std::function<void(const SweepPoint& point, const RunResult* result, const std::string& error,
+                                     const InelasticCollapseError* collapse)>;
 using SweepProgressCallback = std::function<void(const SweepProgress&)>;
 
 // The margin a time limit leaves on a point's estimate (SweepRunner::set_time_limit).
@@ -60,7 +64,8 @@ class SweepRunner {
   std::optional<std::size_t> next();
   // A point finished elsewhere: passes it to the sink and counts it.
   // under_lock runs first, under the lock that guards the counts.
-  void record(std::size_t index, const RunResult* result, const std::string& error, const std::function<void()>& under_lock = {});
+  void record(std::size_t index, const RunResult* result, const std::string& error, const std::function<void()>& under_lock = {},
+              const InelasticCollapseError* collapse = nullptr);
 
   SweepProgress progress() const;
 
@@ -102,7 +107,7 @@ class SweepRunner {
   double time_limit_ = std::numeric_limits<double>::infinity();
   double done_wall_ = 0.0, done_wall_cost_ = 0.0;  // wall seconds and estimates of finished points with a result
   std::size_t done_ = 0;
-  std::size_t failed_ = 0;
+  std::size_t failed_ = 0, collapsed_ = 0;
   double done_cost_ = 0.0;
   std::uint64_t finished_events_ = 0;
   std::exception_ptr sink_error_;
