@@ -8,7 +8,8 @@ Usage: /usr/bin/python3 plots/hard_limit.py DATA.json PREFIX   -> PREFIX.png and
     band (the replicas' standard error); a series whose hard spheres collapse ends in an open marker;
 (e) the fraction of hard replicas that collapse against N(1 - e), one colour per N, from the
     initial state (filled) and from the soft column's state (open);
-(f) when they collapse: t - transient of each collapse against N(1 - e), same markers.
+(f) when they collapse: the time from the start (initial state) or from the hand-over at the end of
+    the transient (soft start) of each collapse against N(1 - e), same markers.
 """
 import sys
 
@@ -49,7 +50,7 @@ def main(argv):
         ax.set_xlabel(r"$\log_{10} k$")
         ax.set_ylabel(r"$n_{\rm coll}$")
         ax.set_title("(%s) N = %d" % (letters[j], N), loc="left")
-        ax.legend(loc="lower right", frameon=False)
+        ax.legend(loc="upper left", frameon=False, fontsize=6)
     for ax in soft_axes[len(ns):]:
         ax.set_visible(False)
     ax_e, ax_f = panels[4], panels[5]
@@ -72,13 +73,13 @@ def main(argv):
     ax_e.set_xlabel(r"$N(1-e)$")
     ax_e.set_ylabel("fraction of replicas that collapse")
     ax_e.set_title("(e) collapsing replicas (of %d)" % data.get("replicas", 0), loc="left")
-    ax_e.legend(loc="lower right", frameon=False, fontsize=6)
+    ax_e.legend(loc="upper left", frameon=False, fontsize=6)
     ax_f.set_yscale("log")
     ax_f.set_xlabel(r"$N(1-e)$")
-    ax_f.set_ylabel(r"collapse at $t - t_{\rm transient}$")
+    ax_f.set_ylabel("time to the collapse")
     ax_f.set_title("(f) when they collapse", loc="left")
-    fig.suptitle(data.get("title", "") + ": the exact engine's n_coll against k (points), the hard-sphere engine's (dashed, "
-                 "with its band); filled: from the initial state, open: from the soft column's state")
+    fig.suptitle(data.get("title", "") + "\n(a)-(d) exact engine (points), hard spheres (dashed)\n"
+                 "(e), (f) hard spheres from the initial state (filled), from the soft column (open)")
     save(fig, argv[2])
     return 0
 

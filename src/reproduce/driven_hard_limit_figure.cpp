@@ -71,7 +71,7 @@ std::string e_text(double e) { return fmt::format("{:g}", e); }
 // What the hard replicas of one (N, e, start) did: the runs' n_coll and the collapses' instants.
 struct Outcome {
   std::vector<double> n_coll;
-  std::vector<double> collapse_t;  // after the window's start (the hand-over for a soft start)
+  std::vector<double> collapse_t;  // from the start (initial state), or from the hand-over at the transient's end (soft start)
   int missing = 0;
   double mean() const {
     double s = 0;
@@ -136,7 +136,7 @@ FigureOutcome reproduce_hard_limit(const ReproduceFlags& o, ReproductionLog& log
     Outcome& out = hard[{s.params.N, s.params.e, s.engine.start_k > 0}];
     if (run != runs.end()) out.n_coll.push_back(run->second.n_coll);
     else if (const auto c = collapses.find(pt.key); c != collapses.end()) {
-      out.collapse_t.push_back(c->second.t - s.transient);
+      out.collapse_t.push_back(s.engine.start_k > 0 ? c->second.t - s.transient : c->second.t);
       ++stored;
     } else {
       ++out.missing;
@@ -151,7 +151,8 @@ FigureOutcome reproduce_hard_limit(const ReproduceFlags& o, ReproductionLog& log
       "collapse (1000 collisions within 1e-9, stored as a collapse with its instant, no n_coll). Beside them the exact "
       "engine's n_coll over the k of each series below, one run per point. Figure: `limit-hard.png` (and .pdf).\n\n"
       "### Where hard spheres collapse\n\n"
-      "| N | e | N(1 − e) | initial state: run / collapsed | collapse at t − transient | n_coll | soft start: run / collapsed "
+      "n_coll is the replicas' mean with its standard error; the difference is that of the two starts in combined errors.\n\n"
+      "| N | e | N(1 − e) | initial state: run / collapsed | collapse at t | n_coll | soft start: run / collapsed "
       "| collapse at t − transient | n_coll | difference / σ |\n|---|---|---|---|---|---|---|---|---|---|\n",
       reproduce_command_line(o), p.replicas, p.hard_T, power_of_ten_text(start_k));
   nlohmann::json thresholds = nlohmann::json::array();
@@ -170,7 +171,9 @@ FigureOutcome reproduce_hard_limit(const ReproduceFlags& o, ReproductionLog& log
     const auto cell = [](const Outcome* h) -> std::string {
       if (!h) return "| | | ";
       return fmt::format("| {} / {}{} | {} | {} ", h->n_coll.size(), h->collapse_t.size(), h->missing ? fmt::format(" ({} not run)", h->missing) : "",
-                         waits_text(h->collapse_t), h->n_coll.empty() ? "" : plus_minus(h->mean(), h->error(), 1));
+                         waits_text(h->collapse_t), h->n_coll.empty()               ? ""
+                         : h->n_coll.size() == 1 ? fmt::format("{:.1f} (one run)", h->mean())
+                                                 : plus_minus(h->mean(), h->error(), 1));
     };
     const auto other = hard.find({N, e, true});
     const Outcome* s = other != hard.end() ? &other->second : nullptr;
