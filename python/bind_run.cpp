@@ -52,9 +52,9 @@ py::dict spec_dict(const RunSpec& s) {
   return p;
 }
 
-// One value per particle (i = 1..N, 1 at the bottom).
-template <class Get>
-py::array_t<double> per_particle(const std::vector<ParticleProfile>& profiles, Get get) {
+// One value per particle (i = 1..N, 1 at the bottom), or per pair.
+template <class Item, class Get>
+py::array_t<double> per_particle(const std::vector<Item>& profiles, Get get) {
   py::array_t<double> a(static_cast<py::ssize_t>(profiles.size()));
   auto w = a.mutable_unchecked<1>();
   for (std::size_t i = 0; i < profiles.size(); ++i) w(static_cast<py::ssize_t>(i)) = get(profiles[i]);
@@ -93,6 +93,23 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
   d["z_std_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.z_std.error; });
   d["K"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.value; });
   d["K_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.error; });
+  // Contact durations (soft spheres), per pair: index 0 the plate's contact, i the pair (i, i+1);
+  // mean and longest in units of tau_c, the fraction of the window in contact, the histogram of
+  // log2(duration / tau_c) in quarter octaves from bin first_bin (edges 2^(log2_min + b / 4)).
+  if (!r.contacts.empty()) {
+    py::dict c;
+    c["contacts"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.contacts); });
+    c["mean"] = per_particle(r.contacts, [](const PairContacts& p) { return p.mean; });
+    c["longest"] = per_particle(r.contacts, [](const PairContacts& p) { return p.longest; });
+    c["contact_fraction"] = per_particle(r.contacts, [](const PairContacts& p) { return p.contact_fraction; });
+    c["open_at_end"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.open_at_end); });
+    py::list hist;
+    for (const PairContacts& p : r.contacts) hist.append(py::make_tuple(p.first_bin, p.histogram));
+    c["histogram"] = hist;
+    c["log2_min"] = ContactDurations::kLog2Min;
+    c["bins_per_octave"] = ContactDurations::kBinsPerOctave;
+    d["contacts"] = c;
+  }
   py::dict derived;
   derived["D"] = r.law.D;
   derived["tau_c"] = r.law.tau_c;

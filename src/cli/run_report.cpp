@@ -36,11 +36,22 @@ std::string run_summary(const RunResult& r, const std::string& stored) {
   out += fmt::format("  in window: {} particle-particle collisions, {} floor hits; {} profile samples every {:.4g}\n",
                      r.particle_collisions, r.floor_hits, r.samples, r.sample_interval);
   for (const std::string& w : run_warnings(r)) out += wrap_words(w, 88, "  warning: ", std::string(11, ' ')) + "\n";
-  out += "\n     i  <z_i>                 sigma_i               K_i\n";
+  // Beside particle i, its contact with i + 1 (soft spheres): the mean and longest duration in units
+  // of tau_c and the fraction of the window the pair spends in contact.
+  const bool contacts = !r.contacts.empty();
+  out += fmt::format("\n     i  <z_i>                 sigma_i               K_i{}\n",
+                     contacts ? "                   contact (i, i+1): mean, longest / tau_c, time in contact" : "");
+  const auto contact_text = [&](std::size_t slot) -> std::string {
+    if (slot >= r.contacts.size()) return "";
+    const PairContacts& c = r.contacts[slot];
+    if (c.contacts == 0 && c.open_at_end == 0) return "  —";
+    return fmt::format("  {:<7.3g} {:<9.3g} {:.3g}", c.mean, c.longest, c.contact_fraction);
+  };
+  if (contacts && s.drive.plate()) out += fmt::format("  plate {:<65}{}\n", "", contact_text(0));
   for (std::size_t i = 0; i < r.profiles.size(); ++i) {
     const ParticleProfile& q = r.profiles[i];
-    out += fmt::format("  {:4d}  {:<21} {:<21} {:<21}\n", i + 1, format_estimate(q.z_mean), format_estimate(q.z_std),
-                       format_estimate(q.kinetic));
+    out += fmt::format("  {:4d}  {:<21} {:<21} {:<21}{}\n", i + 1, format_estimate(q.z_mean), format_estimate(q.z_std),
+                       format_estimate(q.kinetic), contact_text(i + 1));
   }
   out += "\n";
   out += fmt::format("  cost: {} steps, {} events, {:.3g} s wall, {:.3g} s CPU\n", r.steps, r.events, r.wall_seconds, r.cpu_seconds);

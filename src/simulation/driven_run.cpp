@@ -9,6 +9,8 @@
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
 #include "observables/collision_counter.hpp"
+#include "observables/contact_durations.hpp"
+#include "observables/event_fan_out.hpp"
 
 namespace granchain {
 
@@ -67,6 +69,11 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   const double t1 = spec.transient + spec.T;
   CollisionCounter counter(t0, t1, bins);
   ProfileSampler sampler(spec.params.N, spec.params.m, n_samples, bins);
+  // Contact durations (soft spheres: a hard collision lasts no time). They watch the transient too,
+  // so that a contact begun before the window and ended in it counts whole.
+  const bool soft_contacts = !engine_info(spec.engine.kind).hard_spheres;
+  ContactDurations contacts(soft_contacts ? spec.params.N : 0, r.law.tau_c, t0, t1);
+  EventFanOut window(soft_contacts ? EventFanOut{&counter, &contacts} : EventFanOut{&counter});
 
   RunProgress prog;
   prog.t_total = t1;
@@ -87,10 +94,11 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
 
   // Transient, in chunks so that progress can be reported.
   NullEventSink discard;
+  EventSink& transient_sink = soft_contacts ? static_cast<EventSink&>(contacts) : discard;
   const double chunk = std::max(dt_s, 1.0);
   for (double t = 0.0; t < t0;) {
     t = std::min(t0, t + chunk);
-    engine->advance_to(t, discard);
+    engine->advance_to(t, transient_sink);
     report(t, true);
   }
   EngineCounters before_switch{};
@@ -100,11 +108,11 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   }
   for (std::int64_t j = 1; j <= n_samples; ++j) {
     const double t = std::min(t1, t0 + static_cast<double>(j) * dt_s);
-    engine->advance_to(t, counter);
+    engine->advance_to(t, window);
     sampler.sample(engine->state());
     report(t, false);  // a clock read per sample when progress is watched: a cancel is seen within a sample
   }
-  engine->advance_to(t1, counter);  // the window ends at exactly t0 + T
+  engine->advance_to(t1, window);  // the window ends at exactly t0 + T
 
   r.samples = sampler.samples();
   r.n_coll = counter.collision_rate_per_particle(spec.params.N);
@@ -113,6 +121,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   r.particle_collisions = counter.particle_collisions();
   r.floor_hits = counter.floor_hits();
   r.profiles = sampler.profiles();
+  if (soft_contacts) r.contacts = contacts.pairs();
   r.n_coll_halves = counter.collision_rate_stationarity(spec.params.N);
   r.height_halves = sampler.height_stationarity();
   const EngineCounters c = engine->counters();

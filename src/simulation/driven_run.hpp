@@ -12,6 +12,7 @@
 #include "model/chain_state.hpp"
 #include "model/floor.hpp"
 #include "model/plate_motion.hpp"
+#include "observables/contact_durations.hpp"
 #include "observables/profile_sampler.hpp"
 
 namespace granchain {
@@ -40,6 +41,9 @@ struct RunResult {
   std::uint64_t particle_collisions = 0;  // in the window
   std::uint64_t floor_hits = 0;           // in the window
   std::vector<ParticleProfile> profiles;
+  // How long neighbours stay in contact (observables/contact_durations.hpp): the plate's contact
+  // (index 0) and pairs (i, i+1) (index i); empty for hard spheres and for runs stored before it.
+  std::vector<PairContacts> contacts;
   // Is the window stationary? n_coll and the column's mean height compared between the window's
   // two halves (analysis/blocking.hpp, halves_check); a run that fails is still a result, but its
   // error bars are not to be trusted (the summary warns, the JSON and the store keep the verdict).

@@ -70,6 +70,19 @@ json run_result_to_json(const RunResult& r) {
   j["stationarity"] = {{"stationary", r.stationary()},
                        {"n_coll", halves(r.n_coll_halves)},
                        {"mean_height", halves(r.height_halves)}};
+  if (!r.contacts.empty()) {
+    // Durations in units of tau_c; histogram[j] counts log2(duration / tau_c) in
+    // [log2_min + (first_bin + j) / bins_per_octave, ... + 1 / bins_per_octave).
+    json pairs = json::array();
+    for (std::size_t i = 0; i < r.contacts.size(); ++i) {
+      const PairContacts& c = r.contacts[i];
+      pairs.push_back({{"pair", i}, {"contacts", c.contacts}, {"began_before", c.began_before}, {"open_at_end", c.open_at_end},
+                       {"mean", c.mean}, {"longest", c.longest}, {"contact_fraction", c.contact_fraction},
+                       {"first_bin", c.first_bin}, {"histogram", c.histogram}});
+    }
+    j["contacts"] = {{"unit", "tau_c"}, {"log2_min", ContactDurations::kLog2Min}, {"bins_per_octave", ContactDurations::kBinsPerOctave},
+                     {"pairs", pairs}};
+  }
   j["warnings"] = run_warnings(r);  // the verdicts above as the sentences the command line prints
   // A value of the wrong sign fails the run (run_driven_column), so a result's audit found none.
   if (r.spec.engine.audit) j["audit"] = {{"instants", r.audit_instants}, {"values", r.audit_values}};
@@ -145,6 +158,12 @@ RunResult run_result_from_json(const json& j) {
   } else {
     r.n_coll_halves.z = r.height_halves.z = nan;
   }
+  if (j.contains("contacts"))  // runs stored before contact durations were kept have none
+    for (const json& q : j.at("contacts").at("pairs"))
+      r.contacts.push_back(PairContacts{q.at("contacts").get<std::uint64_t>(), q.at("began_before").get<std::uint64_t>(),
+                                        q.at("open_at_end").get<std::uint64_t>(), q.at("mean").get<double>(),
+                                        q.at("longest").get<double>(), q.at("contact_fraction").get<double>(),
+                                        q.at("first_bin").get<int>(), q.at("histogram").get<std::vector<std::uint64_t>>()});
   const json& c = j.at("cost");
   r.steps = c.at("steps").get<std::uint64_t>();
   r.events = c.at("events").get<std::uint64_t>();

@@ -258,3 +258,18 @@ def test_a_result_reads_as_a_notebook_expects():
     pd = pytest.importorskip("pandas")
     frame = r.to_pandas()
     assert isinstance(frame, pd.DataFrame) and frame.index.name == "i" and frame["z_mean"].tolist() == r.z_mean.tolist()
+
+
+def test_contact_durations_per_pair():
+    """A contact of the fluid column lasts about tau_c; the dict's arrays are the JSON's, per pair."""
+    r = granchain.run(N=10, e=0.95, k=1e4, T=200)
+    c = r["contacts"]
+    assert len(c["mean"]) == 10 and c["contacts"][0] == 0  # pair 0: the thermal floor has no contacts
+    busy = c["contacts"] >= 20
+    assert busy.any()
+    assert np.all(np.abs(c["mean"][busy] - 1.0) < 0.2)
+    pairs = json.loads(r["json"])["contacts"]["pairs"]
+    assert [p["contacts"] for p in pairs] == list(c["contacts"].astype(int))
+    first, hist = c["histogram"][1]
+    assert sum(hist) == c["contacts"][1] and first == pairs[1]["first_bin"]
+    assert "contacts" not in granchain.run(N=5, engine="hard", T=20)
