@@ -19,6 +19,23 @@ bool table1_e(double e) {
 
 }  // namespace
 
+std::pair<double, double> combine_replicas(const std::vector<std::pair<double, double>>& runs) {
+  double w = 0, wn = 0;
+  for (const auto& [n, err] : runs) {
+    const double wi = 1.0 / (err * err);
+    w += wi;
+    wn += wi * n;
+  }
+  const double mean = wn / w;
+  double error = 1.0 / std::sqrt(w);
+  if (runs.size() >= kReplicasForScatter) {
+    double chi2 = 0;
+    for (const auto& [n, err] : runs) chi2 += (n - mean) * (n - mean) / (err * err);
+    error *= std::max(1.0, std::sqrt(chi2 / static_cast<double>(runs.size() - 1)));
+  }
+  return {mean, error};
+}
+
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   // (engine, drive, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
   using Key = std::tuple<EngineKind, DriveSpec, int, double>;
@@ -77,13 +94,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       CurveAnalysis curve;
       curve.e = e;
       for (const auto& [k, point_runs] : by_k) {
-        double w = 0, wn = 0;
-        for (const auto& [n, err] : point_runs) {
-          const double wi = 1.0 / (err * err);
-          w += wi;
-          wn += wi * n;
-        }
-        curve.n_coll_of_k.push_back({k, wn / w, 1.0 / std::sqrt(w)});
+        curve.n_coll_of_k.push_back({k, 0, 0});
+        std::tie(curve.n_coll_of_k.back().y, curve.n_coll_of_k.back().error) = combine_replicas(point_runs);
       }
       all_curves.push_back({e, curve.n_coll_of_k});
       const auto u = unsettled.find(key);

@@ -5,6 +5,7 @@
 #include <map>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/blocking.hpp"
@@ -15,7 +16,15 @@
 
 namespace granchain::analysis {
 
-// One stored run's result (several runs of one point are combined by weighted mean).
+// Independent runs (replicas) of one point as (n_coll, error): their weighted mean, and from
+// kReplicasForScatter runs on its error scaled by the Birge ratio sqrt(chi^2 / (m - 1)) where the
+// replicas scatter more than their blocking errors say (never scaled down): the error then comes
+// from the replicas. Fewer runs keep the blocking error: with 1 or 2 degrees of freedom the ratio is
+// uncertain by 50 % or more, and taking it only where it exceeds 1 would widen right errors on average.
+inline constexpr std::size_t kReplicasForScatter = 4;
+std::pair<double, double> combine_replicas(const std::vector<std::pair<double, double>>& runs);
+
+// One stored run's result (several runs of one point are combined by combine_replicas).
 struct NcollRun {
   EngineKind engine = EngineKind::Exact;
   int N = 0;
