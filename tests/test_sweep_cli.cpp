@@ -571,3 +571,18 @@ TEST_F(SweepCli, HardSphereCollapsesAreStoredAsOutcomesAndNotRunAgain) {
   EXPECT_EQ(conflict.exit_code, 2) << conflict.err;
   EXPECT_NE(conflict.err.find("and a collapse at t ="), std::string::npos) << conflict.err;
 }
+
+// The large preset: the paper's across-N sweep extended to N = 1000, with four replicas on the
+// condensed side; --print-sweeps runs nothing and predicts the cost; a bad preset is refused.
+TEST_F(SweepCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
+  const CliResult r = run("reproduce --figure fig6 --preset large --print-sweeps --db l.db");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("granchain sweep --N 1000 --e 0.995,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 150 --e 0.1,0.2,0.3,0.4 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 20 --e"), std::string::npos) << r.out;  // the paper's columns stay
+  EXPECT_NE(r.out.find("1992 distinct points"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "l.db"));
+  const CliResult bad = run("reproduce --figure fig6 --preset huge --db l.db");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("valid: quick, paper, large, smoke"), std::string::npos) << bad.err;
+}

@@ -71,8 +71,8 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
   const std::vector<const FigureEntry*> chosen = chosen_figures(o.figure);
   try {
     if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all, beyond, drives", o.figure, figure_names()));
-    if (o.preset != "quick" && o.preset != "paper" && o.preset != "smoke")
-      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, smoke", o.preset));
+    if (o.preset != "quick" && o.preset != "paper" && o.preset != "large" && o.preset != "smoke")
+      throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, large, smoke", o.preset));
     // As sweep validates it; an empty value is given, and refused.
     if (threads_text) o.threads = static_cast<int>(parse_integer_in(*threads_text, "--threads", 1, 1024));
     if (time_limit_text) o.time_limit = parse_duration(*time_limit_text, "--time-limit");
@@ -202,7 +202,7 @@ Subcommand add_reproduce_command(CLI::App& app) {
       exit_codes_help("2 bad input (nothing run), 3 a run turned unphysical, 4 a store or output could not be written, 75 "
                       "--time-limit left runs for a repeat of the command"));
   sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, limit-hard, beyond, or drives-onset, drives-ncoll, drives-profiles, drives; default fig5");
-  sub_->add_option("--preset", impl_->preset, "quick (default), paper or smoke (a pipeline check)");
+  sub_->add_option("--preset", impl_->preset, "quick (default), paper, large (paper with fig6, fig7, fig9 to N = 1000) or smoke (a pipeline check)");
   CLI::Option* db_option = sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   CLI::Option* out_option = sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
   auto threads_text = std::make_shared<std::string>();

@@ -1,5 +1,5 @@
 // `granchain reproduce` across N and T0: Figs. bifurcationdiagram (fig6), logfitbX (fig7) and
-// powerexpo (fig9) from one sweep over N = 20..150 at k_B T0 = 1, and Table 1 (N = 25, 50 at
+// powerexpo (fig9) from one sweep over N = 20..150 (to 1000 in the large preset) at k_B T0 = 1, and Table 1 (N = 25, 50 at
 // k_B T0 = 1, 2, 4, 10).
 #include <fmt/format.h>
 
@@ -16,13 +16,37 @@ namespace granchain {
 namespace {
 
 const std::vector<int> kAcrossN = {20, 25, 30, 40, 50, 100, 150};
+// The large preset's columns beyond the paper's.
+const std::vector<int> kLargeN = {200, 300, 500, 1000};
 // Table 1's and Fig. powerexpo's power-law exponents are measured at these e.
 const char* kPowerLawE = "0.1,0.2,0.3,0.4";
+// Independent replicas where blocking may underestimate (condensed columns, docs/statistics.md).
+constexpr int kLargeReplicas = 4;
 
 std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<int>& Ns, const std::string& T0) {
   std::vector<GridBlock> blocks;
   for (int N : Ns)
     blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, critical_region_c()) + "," + kPowerLawE, preset_k(o), preset_T(o, N), T0});
+  return blocks;
+}
+
+// The large preset: the paper's columns and N = 200 ... 1000 on the same grids, with four replicas
+// on the power-law side of N >= 100 and at the condensed points (c = N (1 - e) >= 2.6, where the
+// paper puts e_c1) of N >= 200; replica 0 of each is the single run of the paper's grid.
+std::vector<GridBlock> large_blocks(const ReproduceFlags& o) {
+  std::vector<int> Ns = kAcrossN;
+  Ns.insert(Ns.end(), kLargeN.begin(), kLargeN.end());
+  std::vector<GridBlock> blocks = across_blocks(o, Ns, "1");
+  std::vector<double> condensed;
+  for (double c : critical_region_c())
+    if (c >= 2.6 - 1e-9) condensed.push_back(c);
+  for (int N : Ns) {
+    if (N < 100) continue;
+    std::string e = kPowerLawE;
+    if (N >= 200) e = e_list_at_n_one_minus_e(N, condensed) + "," + e;
+    GridBlock b{std::to_string(N), e, preset_k(o), preset_T(o, N), "1", kLargeReplicas};
+    blocks.push_back(b);
+  }
   return blocks;
 }
 
@@ -42,15 +66,20 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
   s.status = s.failed.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
   s.a = analyze_points(o.db, s.points, preset_k_min(o));
   s.grid_text = fmt::format("k = {} (fits over k >= {}), T = {} for N < 50 and {} for N >= 50 (transient T/10), exact engine; "
-                            "e = 1 - c/N for {} and e = {}; {} runs",
+                            "e = 1 - c/N for {} and e = {}{}; {} runs",
                             preset_k(o), power_of_ten_text(preset_k_min(o)), preset_T(o, 20), preset_T(o, 50), critical_region_text(),
-                            kPowerLawE, s.a.runs);
+                            kPowerLawE,
+                            o.large() ? fmt::format("; {} replicas at e = {} for N >= 100 and at c >= 2.6 for N >= 200 (errors from "
+                                                    "them where they scatter more than blocking says)",
+                                                    kLargeReplicas, kPowerLawE)
+                                      : "",
+                            s.a.runs);
   return s;
 }
 
 // The across-N sweep of Figs. 6, 7 and 9 (k_B T0 = 1).
 SweepAnalysis across_n(const ReproduceFlags& o, ReproductionLog& log) {
-  return run_and_analyze(o, across_n_grid(o), o.figure + " (N = 20..150)", log);
+  return run_and_analyze(o, across_n_grid(o), o.figure + (o.large() ? " (N = 20..1000)" : " (N = 20..150)"), log);
 }
 
 std::string critical_text(const analysis::CriticalValue& c, int digits = 4) {
@@ -79,7 +108,7 @@ const analysis::AcrossN* across_at(const StoreAnalysis& a, double kT0) {
 
 }  // namespace
 
-std::vector<GridBlock> across_n_grid(const ReproduceFlags& o) { return across_blocks(o, kAcrossN, "1"); }
+std::vector<GridBlock> across_n_grid(const ReproduceFlags& o) { return o.large() ? large_blocks(o) : across_blocks(o, kAcrossN, "1"); }
 std::vector<GridBlock> table1_grid(const ReproduceFlags& o) { return across_blocks(o, {25, 50}, "1,2,4,10"); }
 
 // Fig. bifurcationdiagram: e_c1 and e_c2 against 1/N with the fits (1 - e_c) = A/N, and the e range
@@ -117,10 +146,10 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o, ReproductionLog& lo
   }
   const std::string drawn = draw_figure(o, "fig6", plot, "bifurcation.py");
   FigureOutcome out{s.status, "", drawn, s.a.run_seconds, "", s.failed};
-  out.markdown = fmt::format("Command: `{}`. N = 20, 25, 30, 40, 50, 100, 150, k_B T0 = 1; {}. "
+  out.markdown = fmt::format("Command: `{}`. N = {}, k_B T0 = 1; {}. "
                              "Figure: `fig6.png` (and .pdf). The paper gives e_c1, e_c2 for N = 25 and 50 in Table 1; for the other N "
                              "its fit lines (Eq. e-fit) stand in.\n\n",
-                             reproduce_command_line(o), s.grid_text);
+                             reproduce_command_line(o), o.large() ? "20, 25, 30, 40, 50, 100, 150, 200, 300, 500, 1000" : "20, 25, 30, 40, 50, 100, 150", s.grid_text);
   out.markdown += table + "\n| fit | measured | paper |\n|---|---|---|\n" + (fits.empty() ? "| (1 − e_c) = A/N | fewer than two N with e_c found | |\n" : fits);
   out.markdown += "\nThe classification boundary enters its fit as the midpoint of the bracket with the bracket's width / √12 as "
                   "error; e_c2 (convex by 2 errors / not) likewise with its half-width.";

@@ -29,7 +29,10 @@ struct ReproduceFlags {
   double k_min = 0;
   std::chrono::steady_clock::time_point started_at = std::chrono::steady_clock::now();
   double time_left() const;  // seconds left of the time limit (infinity without one)
-  bool paper() const { return preset == "paper"; }
+  // large: the paper preset, its across-N figures (fig6, fig7, fig9) extended to N = 200 ... 1000
+  // with replicas on the condensed side; every other figure as in paper.
+  bool paper() const { return preset == "paper" || preset == "large"; }
+  bool large() const { return preset == "large"; }
   bool smoke() const { return preset == "smoke"; }  // the pipeline check: tiny grids, meaningless numbers
 };
 
