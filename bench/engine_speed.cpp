@@ -9,6 +9,7 @@
 //   build/bench/engine_speed --quick    # every N = 25 reference time extrapolated from a short run
 //   build/bench/engine_speed --skip-large  # without the settled columns (about 4 minutes)
 //   build/bench/engine_speed --free-space  # also free-space collapses at N = 25 (up to 20 minutes)
+//   build/bench/engine_speed --observers   # only the observers' share of a run (collision counter, contact durations)
 //   build/bench/engine_speed --plates      # also N = 10 columns on each vibrating plate against the reference,
 //                                          # and a condensed N = 40 column at k = 1e10 on each drive (about 1 minute)
 #include <CLI/CLI.hpp>
@@ -27,6 +28,9 @@
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
 #include "simulation/collapse_run.hpp"
+#include "observables/collision_counter.hpp"
+#include "observables/contact_durations.hpp"
+#include "observables/event_fan_out.hpp"
 #include "simulation/driven_run.hpp"
 
 using namespace granchain;
@@ -134,6 +138,31 @@ LargeTiming time_large_column(const LargeColumn& w, int N, double e, double sett
   return out;
 }
 
+// The observers' share of a run: the exact engine over one window (N = 25, k = 1e8, T = 1000 after
+// the same engine's transient of 100) handing its events to nothing (0), to the collision counter
+// (1), or to the counter and the contact durations together, as run_driven_column does (2).
+struct ObserverTiming {
+  double ns = 0;  // wall nanoseconds per collision event of the window
+  double wall_time() const { return ns; }
+};
+ObserverTiming time_observers(double e, int observers, std::uint64_t seed) {
+  const ChainParameters p{.N = 25, .k = 1e8, .e = e};
+  ThermalFloor floor(p.kT0, p.m, seed);
+  ExactEngine engine(p, driven_column_initial_state(p, seed), &floor);
+  NullEventSink none;
+  engine.advance_to(100.0, none);
+  CollisionCounter counter(100.0, 1100.0, 1024);
+  ContactDurations contacts(p.N, contact_law(p).tau_c, 100.0, 1100.0);
+  EventFanOut both{&counter, &contacts};
+  EventSink& sink = observers == 0 ? static_cast<EventSink&>(none) : observers == 1 ? static_cast<EventSink&>(counter) : both;
+  const auto before = engine.counters();
+  const auto t0 = std::chrono::steady_clock::now();
+  engine.advance_to(1100.0, sink);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto after = engine.counters();
+  return {1e9 * wall / static_cast<double>(after.contact_ends + after.floor_hits - before.contact_ends - before.floor_hits)};
+}
+
 }  // namespace
 
 // A column of N = 10 on a vibrating plate (omega = 5), through run_driven_column as `granchain run`.
@@ -165,6 +194,10 @@ int main(int argc, char** argv) {
                "also time free-space collapses, N = 25, e = 0.3, 200 launches at k = 1e8 and 1e10 (exact engine; "
                "up to 20 minutes)");
   app.add_flag("--skip-large", skip_large, "leave out the settled columns (N = 40, 100, 150; about 4 minutes)");
+  bool observers = false;
+  app.add_flag("--observers", observers,
+               "only the observers' share: N = 25, k = 1e8, e = 0.5 and 0.85, the exact engine's window with no observer, the "
+               "collision counter, and the counter with the contact durations (about 1 minute)");
   app.add_option("--repeat", repeat, "time every run this many times and keep the fastest (runs are deterministic)")
       ->check(CLI::Range(1, 100));
   if (const auto code = bench::parse_or_exit(app, argc, argv, "engine_speed", [&] {
@@ -183,6 +216,24 @@ int main(int argc, char** argv) {
     return best;
   };
 
+  if (observers) {
+    fmt::print("Observers: N = 25, k = 1e8, window T = 1000 after a transient of 100, exact engine, seed {}; ns per collision "
+               "event, fastest of {}, the three in turn\n",
+               seed, repeat);
+    fmt::print("{:>5} | {:>10} {:>10} {:>18} | {:>14} {:>18}\n", "e", "none", "counter", "counter+contacts", "counter/none",
+               "+contacts/counter");
+    for (const double e : {0.5, 0.85}) {
+      ObserverTiming best[3];
+      for (int r = 0; r < repeat; ++r)
+        for (int which = 0; which < 3; ++which) {
+          const ObserverTiming t = time_observers(e, which, seed);
+          if (r == 0 || t.ns < best[which].ns) best[which] = t;
+        }
+      fmt::print("{:>5} | {:>10.1f} {:>10.1f} {:>18.1f} | {:>14.3f} {:>18.3f}\n", e, best[0].ns, best[1].ns, best[2].ns,
+                 best[1].ns / best[0].ns, best[2].ns / best[1].ns);
+    }
+    return 0;
+  }
   const std::vector<Workload> workloads{{1e8, 0.95, 100}, {1e8, 0.88, 100}, {1e8, 0.5, 100},
                                         {1e10, 0.95, 10}, {1e10, 0.88, 10}, {1e10, 0.5, 10}};
   fmt::print("N = 25 driven column, kT0 = 1, transient = T/10, seed {}; times are wall seconds on one core, fastest of {}\n",

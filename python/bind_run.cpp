@@ -103,6 +103,7 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
     c["longest"] = per_particle(r.contacts, [](const PairContacts& p) { return p.longest; });
     c["contact_fraction"] = per_particle(r.contacts, [](const PairContacts& p) { return p.contact_fraction; });
     c["open_at_end"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.open_at_end); });
+    c["began_before"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.began_before); });
     py::list hist;
     for (const PairContacts& p : r.contacts) hist.append(py::make_tuple(p.first_bin, p.histogram));
     c["histogram"] = hist;

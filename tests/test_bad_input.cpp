@@ -95,7 +95,8 @@ const std::vector<BadInputRow> kRows = {
     {"run --engine hard --start-k 1e10 --T 1 --transient 0 --db store.db", 2, {"--start-k = 1e10", "transient = 0", "--transient > 0"}, kAll},
     {"run --engine hard --start-k 1e60 --T 1 --db store.db", 2, {"--start-k = 1e60 is out of range", "0 < start-k <= ", "exact engine's clock"}, kAll},
     {"sweep --engine hard --start-k 1e60 --T 1 --dry-run", 2, {"--start-k = 1e60 is out of range"}, kAll},
-    {"run --engine hard --drive sine --A 0.01 --omega 1e6 --start-k 1e6 --T 1 --db store.db", 2, {"--start-k = 1e6 is out of range", "10 contact times"}, kAll},
+    {"sweep --start-k 1e8 --T 1 --dry-run", 2, {"--start-k", "add hard to --engine"}, kAll},
+    {"run --engine hard --drive sine --A 0.01 --omega 1e6 --start-k 1e6 --T 1 --db store.db", 2, {"--start-k = 1e6 is out of range", "start-k >= 1.2", "10 contact times"}, kAll},
     {"run --engine hard --start-k 1e8 --N 3 --T 1 --no-db", 0, {}, kAll, {"engine hard"}},
     // Drives: the plate's parameters belong to a plate, each given once, the sawtooth has no Gamma,
     // a plate needs its amplitude and frequency, its period at least 10 tau_c; the audit does not cover it.

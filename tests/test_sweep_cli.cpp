@@ -570,6 +570,18 @@ TEST_F(SweepCli, HardSphereCollapsesAreStoredAsOutcomesAndNotRunAgain) {
   const CliResult conflict = run("merge --into all.db hard.db");
   EXPECT_EQ(conflict.exit_code, 2) << conflict.err;
   EXPECT_NE(conflict.err.find("and a collapse at t ="), std::string::npos) << conflict.err;
+  // The other way round: a run in the source whose key the target holds as a collapse.
+  ASSERT_EQ(run(grid.substr(0, grid.find(" --db")) + " --db run.db").exit_code, 3);
+  sqlite3_open((dir_ / "run.db").c_str(), &db);
+  sqlite3_exec(db, "DELETE FROM collapsed_points; UPDATE run_points SET point_key = 'k' || point_key;", nullptr, nullptr, nullptr);
+  const std::string attach = "ATTACH DATABASE '" + (dir_ / "all.db").string() +
+                             "' AS a; UPDATE run_points SET point_key = (SELECT min(point_key) FROM a.collapsed_points) "
+                             "WHERE rowid = (SELECT min(rowid) FROM run_points);";
+  ASSERT_EQ(sqlite3_exec(db, attach.c_str(), nullptr, nullptr, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
+  sqlite3_close(db);
+  const CliResult reverse = run("merge --into all.db run.db");
+  EXPECT_EQ(reverse.exit_code, 2) << reverse.err;
+  EXPECT_NE(reverse.err.find(": a collapse at t ="), std::string::npos) << reverse.err;
 }
 
 // The large preset: the paper's across-N sweep extended to N = 1000, with four replicas on the

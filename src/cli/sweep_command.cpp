@@ -351,7 +351,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       }
     }
     if (!impl.quiet)
-      fmt::print(stderr, "sweep: {} points stored now, {} were already there{}, {} failed; store {}\n", inserted, already,
+      fmt::print(stderr, "sweep: {} points stored now, {} were already there{}, {} failed; store {}\n", inserted, already - collapsed_before,
                  collapsed_now.size() + collapsed_before > 0
                      ? fmt::format(", {} collapsed ({} now)", collapsed_now.size() + collapsed_before, collapsed_now.size())
                      : "",

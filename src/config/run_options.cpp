@@ -280,12 +280,13 @@ void check_start_k(const RunOptions& o, const std::map<std::string, RawValue>& r
                                    "engine's clock resolution at the transient's end)",
                                    rounded_bound(largest_resolved_k(p.m, p.e, o.spec.transient, true), true), p.m, p.e,
                                    o.spec.transient));
+  // tau_c falls as k^-1/2: the plate's period bounds start-k from below.
   const double omega_max = 2.0 * std::numbers::pi / (10.0 * tau_c);
   if (o.spec.drive.plate() && !(o.spec.drive.omega <= omega_max))
     value_out_of_range("start-k", given,
-                       fmt::format("0 < start-k <= {} at omega = {}, e = {}, m = {} (the plate's period must last at least 10 contact "
+                       fmt::format("start-k >= {} at omega = {}, e = {}, m = {} (the plate's period must last at least 10 contact "
                                    "times of the soft start)",
-                                   rounded_bound(k * std::pow(omega_max / o.spec.drive.omega, 2), true), o.spec.drive.omega, p.e, p.m));
+                                   rounded_bound(k * std::pow(o.spec.drive.omega / omega_max, 2), false), o.spec.drive.omega, p.e, p.m));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "observables/contact_durations.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -9,10 +10,12 @@ namespace granchain {
 double ContactDurations::bin_lower_edge(int b) { return std::exp2(kLog2Min + static_cast<double>(b) / kBinsPerOctave); }
 
 int ContactDurations::bin_of(double x) {
-  if (!(x > 0)) return 0;
-  // x = f 2^q with 1 <= f < 2; quarter octaves at 2^(1/4), 2^(1/2), 2^(3/4).
-  const int q = std::ilogb(x);
-  const double f = std::scalbn(x, -q);
+  if (!(x >= 0x1p-1022) || !std::isfinite(x)) return x > 1 ? kBins - 1 : 0;  // subnormal, zero, negative, NaN; infinity
+  // x = f 2^q with 1 <= f < 2, read from the bits (no library call per contact); quarter octaves at
+  // 2^(1/4), 2^(1/2), 2^(3/4).
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const int q = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+  const double f = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
   const int quarter = (f >= 1.189207115002721) + (f >= 1.4142135623730951) + (f >= 1.6817928305074290);
   return std::clamp((q - kLog2Min) * kBinsPerOctave + quarter, 0, kBins - 1);
 }
@@ -20,6 +23,7 @@ int ContactDurations::bin_of(double x) {
 ContactDurations::ContactDurations(int N, double tau_c, double t_begin, double t_end)
     : n_(N),
       tau_c_(tau_c),
+      inverse_tau_c_(1.0 / tau_c),
       t_begin_(t_begin),
       t_end_(t_end),
       begin_hi_(static_cast<std::size_t>(N), std::numeric_limits<double>::quiet_NaN()),
@@ -29,7 +33,7 @@ ContactDurations::ContactDurations(int N, double tau_c, double t_begin, double t
       sum_(static_cast<std::size_t>(N), 0.0),
       longest_(static_cast<std::size_t>(N), 0.0),
       in_window_(static_cast<std::size_t>(N), 0.0),
-      hist_(static_cast<std::size_t>(N), std::vector<std::uint64_t>(kBins, 0)) {}
+      hist_(static_cast<std::size_t>(N) * kBins, 0) {}
 
 void ContactDurations::on_event(const Event& ev) {
   // Slot 0: the plate's contact with particle 1; slot i + 1: pair (i, i + 1).
@@ -49,23 +53,24 @@ void ContactDurations::on_event(const Event& ev) {
     return;
   }
   if (std::isnan(begin_hi_[s])) return;  // a thermal floor's hit, or an end whose begin came before the first event seen
+  if (ev.t >= t_end_) return;  // ends at or after the window's end (round-off at t_end): open at the end, as pairs() counts it
   const double b = begin_hi_[s];
   // (t + t_low) - (b + b_low), the large parts first: exact for a contact short beside t.
   const double duration = (ev.t - b) + (ev.t_low - begin_lo_[s]);
   begin_hi_[s] = std::numeric_limits<double>::quiet_NaN();
-  if (ev.t < t_begin_ || ev.t >= t_end_) return;
+  if (ev.t < t_begin_) return;
   in_window_[s] += ev.t - std::max(b, t_begin_);
   finish(slot, duration, b < t_begin_);
 }
 
 void ContactDurations::finish(int slot, double duration, bool began_before) {
   const auto s = static_cast<std::size_t>(slot);
-  const double x = duration / tau_c_;
+  const double x = duration * inverse_tau_c_;
   ++count_[s];
   if (began_before) ++before_[s];
   sum_[s] += x;
   longest_[s] = std::max(longest_[s], x);
-  ++hist_[s][static_cast<std::size_t>(bin_of(x))];
+  ++hist_[s * kBins + static_cast<std::size_t>(bin_of(x))];
 }
 
 std::vector<PairContacts> ContactDurations::pairs() const {
@@ -84,11 +89,11 @@ std::vector<PairContacts> ContactDurations::pairs() const {
       p.longest = std::max(p.longest, (t_end_ - begin_hi_[s]) / tau_c_);
     }
     p.contact_fraction = T > 0 ? in_window / T : 0.0;
-    const auto& h = hist_[s];
-    const auto first = std::find_if(h.begin(), h.end(), [](std::uint64_t c) { return c > 0; });
-    if (first == h.end()) continue;
-    const auto last = std::find_if(h.rbegin(), h.rend(), [](std::uint64_t c) { return c > 0; }).base();
-    p.first_bin = static_cast<int>(first - h.begin());
+    const auto h_begin = hist_.begin() + static_cast<std::ptrdiff_t>(s * kBins), h_end = h_begin + kBins;
+    const auto first = std::find_if(h_begin, h_end, [](std::uint64_t c) { return c > 0; });
+    if (first == h_end) continue;
+    const auto last = std::find_if(std::make_reverse_iterator(h_end), std::make_reverse_iterator(h_begin), [](std::uint64_t c) { return c > 0; }).base();
+    p.first_bin = static_cast<int>(first - h_begin);
     p.histogram.assign(first, last);
   }
   return out;

@@ -47,11 +47,11 @@ class ContactDurations final : public EventSink {
  private:
   void finish(int slot, double duration, bool began_before);
   int n_;
-  double tau_c_, t_begin_, t_end_;
+  double tau_c_, inverse_tau_c_, t_begin_, t_end_;
   std::vector<double> begin_hi_, begin_lo_;  // open contact's begin time (t + t_low), NaN when closed
   std::vector<std::uint64_t> count_, before_;
   std::vector<double> sum_, longest_, in_window_;
-  std::vector<std::vector<std::uint64_t>> hist_;
+  std::vector<std::uint64_t> hist_;  // pair-major: hist_[slot * kBins + bin]
 };
 
 }  // namespace granchain

@@ -6,6 +6,7 @@
 #include <ctime>
 #include <fmt/format.h>
 
+#include "engines/plate_flight.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
 #include "observables/collision_counter.hpp"
@@ -29,7 +30,7 @@ double thread_cpu_seconds() {
 
 ChainState hard_sphere_start(ChainState s, const ChainParameters& p, const FloorDrive& floor) {
   const PlateMotion* plate = floor.plate();
-  const double surface = plate != nullptr ? plate->z(s.t) : 0.0;
+  const double surface = plate != nullptr ? plate_flight::piece_state(*plate, s.t).z : 0.0;  // as the hard engine reads it
   s.z[0] = std::max(s.z[0], surface + 0.5 * p.d);
   for (std::size_t i = 1; i < s.z.size(); ++i) s.z[i] = std::max(s.z[i], s.z[i - 1] + p.d);
   return s;
@@ -75,6 +76,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   ContactDurations contacts(soft_contacts ? spec.params.N : 0, r.law.tau_c, t0, t1);
   EventFanOut window(soft_contacts ? EventFanOut{&counter, &contacts} : EventFanOut{&counter});
 
+  EngineCounters before_switch{};  // the soft engine's counts, for a soft start's totals
   RunProgress prog;
   prog.t_total = t1;
   auto last_report = wall0;
@@ -86,8 +88,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     const EngineCounters c = engine->counters();
     prog.t = t;
     prog.in_transient = transient;
-    prog.steps = c.steps;
-    prog.events = c.contact_ends + c.floor_hits;
+    prog.steps = c.steps + before_switch.steps;
+    prog.events = c.contact_ends + c.floor_hits + before_switch.contact_ends + before_switch.floor_hits;
     prog.wall_seconds = seconds_since(wall0);
     progress(prog);
   };
@@ -101,7 +103,6 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     engine->advance_to(t, transient_sink);
     report(t, true);
   }
-  EngineCounters before_switch{};
   if (soft_start) {
     before_switch = engine->counters();
     engine = make_engine(spec.engine, spec.params, hard_sphere_start(engine->state(), spec.params, *floor), floor.get());

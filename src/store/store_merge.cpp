@@ -166,6 +166,7 @@ void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path
                                   : "SELECT r.*, NULL, NULL, NULL FROM runs r ORDER BY r.id");
   const int run_columns = rows.columns() - 3;
   SqlStatement find(target, "SELECT run_id FROM run_points WHERE point_key = ?");
+  SqlStatement collapsed(target, "SELECT t FROM collapsed_points WHERE point_key = ?");
   SqlStatement add_key(target, "INSERT INTO run_points(point_key, run_id, sweep_seed, replica) VALUES(?,?,?,?)");
   ResultComparer compare(target, "runs", kRunResultColumns);
   std::unique_ptr<SqlStatement> insert;
@@ -174,6 +175,15 @@ void merge_runs(sqlite3* target, sqlite3* source, const std::string& source_path
     const bool has_key = rows.column_type(run_columns) != SQLITE_NULL;
     if (has_key) {
       const std::string key = rows.column_text(run_columns);
+      collapsed.bind(1, key);
+      if (collapsed.row()) {
+        const double t = collapsed.column_double(0);
+        collapsed.reset();
+        throw MergeConflict(fmt::format("merge: conflicting results for point '{}': a collapse at t = {} in '{}', and run {} in '{}'; "
+                                        "nothing was merged",
+                                        key, t, target_path, old_id, source_path));
+      }
+      collapsed.reset();
       find.bind(1, key);
       const bool found = find.row();
       const std::int64_t existing = found ? find.column_int(0) : 0;

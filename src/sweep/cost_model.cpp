@@ -52,7 +52,17 @@ double plate_cost_factor(const DriveSpec& drive, double N, double k) {
 double estimate_cost_seconds(const RunSpec& s) {
   const ChainParameters& p = s.params;
   const double time = s.T + s.transient;
-  if (engine_info(s.engine.kind).hard_spheres) return kRunOverheadSeconds + 3e-7 * p.N * time * (10.0 + 120.0 * (1.0 - p.e));
+  if (engine_info(s.engine.kind).hard_spheres) {
+    double seconds = kRunOverheadSeconds + 3e-7 * p.N * time * (10.0 + 120.0 * (1.0 - p.e));
+    if (s.engine.start_k > 0) {  // the exact engine runs the transient at start_k
+      RunSpec soft = s;
+      soft.engine.kind = EngineKind::Exact;
+      soft.params.k = s.engine.start_k;
+      soft.T = 0.0;
+      seconds += estimate_cost_seconds(soft);
+    }
+    return seconds;
+  }
   if (s.engine.kind == EngineKind::Exact)
     return kRunOverheadSeconds + time * std::exp(exact_log_rate(p.N, p.e, p.k, p.kT0)) * plate_cost_factor(s.drive, p.N, p.k);
   const double steps = time * s.engine.dt_factor / contact_law(p).tau_c;

@@ -19,7 +19,8 @@ namespace granchain {
 //  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
 //    (measured: 4.8e-9 .. 2.2e-8 s per particle step from N = 50 down to N = 3).
 //  - hard-sphere engine: not calibrated; about 3e-7 s per collision with a guessed collision
-//    rate of 10 + 120 (1 - e) per particle and unit time.
+//    rate of 10 + 120 (1 - e) per particle and unit time; with --start-k, plus the exact engine's
+//    transient at that k.
 double estimate_cost_seconds(const RunSpec& spec);
 
 }  // namespace granchain

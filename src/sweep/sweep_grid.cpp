@@ -106,6 +106,8 @@ std::vector<SweepPoint> build_sweep_points(const SweepDefinition& def) {
   const auto hard_at = [&](const std::vector<std::size_t>& at) { return is_hard(values.at(engine_axis)[at[engine_axis]]); };
   const bool any_hard = std::any_of(values.at(engine_axis).begin(), values.at(engine_axis).end(), is_hard);
   if (scalar.count("tc") && !any_hard) throw InputError("--tc: the TC model belongs to --engine hard; add hard to --engine");
+  if (scalar.count("start-k") && !any_hard)
+    throw InputError("--start-k: the hard-sphere engine's start belongs to --engine hard; add hard to --engine");
 
   std::vector<SweepPoint> points;
   // Counted in double: lists of up to 100000 values and 1000000 replicas multiply to more than a
