@@ -14,8 +14,8 @@ namespace granchain {
 //    time of 676 whole runs of the paper's grids. Inside the calibrated box (3 <= N <= 150,
 //    1e5 <= k <= 1e10) it predicts 693 of the 700 held-out runs within a factor of 2. Outside the
 //    box N and k are held at its edge and the cost scaled by N / N_edge: a rough guess. Above a
-//    vibrating plate: times a factor of the drive, k and N fitted by bench/fit_plate_cost.py (about
-//    0.8 at k = 1e4 to 2 at 1e8 for N = 25).
+//    vibrating plate: times a factor of the drive, k, N and N (1 - e) fitted by
+//    bench/fit_plate_cost.py (about 0.5-1.4 at k = 1e5, 1-5 at 1e8 and 1.3-17 at 1e10 for N = 25).
 //  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
 //    (measured: 4.8e-9 .. 2.2e-8 s per particle step from N = 50 down to N = 3).
 //  - hard-sphere engine: not calibrated; about 3e-7 s per collision with a guessed collision
