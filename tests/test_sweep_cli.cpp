@@ -434,6 +434,25 @@ TEST_F(SweepCli, SmokePresetDrawsTheGroupBeyond) {
   EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM collapse_runs"), counts);
 }
 
+// The group columns: the contacts figure runs its two replicas per point, reports every choice of e
+// and every N, and a repeat (and --stored-only) runs nothing.
+TEST_F(SweepCli, SmokePresetDrawsTheGroupColumns) {
+  const CliResult r = run("reproduce --figure columns --preset smoke --out figs -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"contacts.png", "contacts.pdf", "contacts.json", "report-contacts.md", "report-columns.md"})
+    EXPECT_TRUE(fs::exists(dir_ / "figs" / f)) << f;
+  const std::string report = slurp(dir_ / "figs/report-contacts.md");
+  for (const char* s : {"### N(1 − e) = 2", "### N(1 − e) = 5", "### e = 0.3", "| 10 | 0.8 | 1e4 |", "| 25 | 0.3 | 1e4 |",
+                        "12 of 12 runs stored"})
+    EXPECT_NE(report.find(s), std::string::npos) << s;
+  EXPECT_EQ(query(dir_ / "reproduce.db", "SELECT count(*) FROM runs"), 12);
+  const CliResult again = run("reproduce --figure contacts --preset smoke --out figs");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("0 to run"), std::string::npos) << again.err;
+  ASSERT_EQ(run("reproduce --figure contacts --preset smoke --stored-only --out figs2 -q").exit_code, 0);
+  EXPECT_EQ(slurp(dir_ / "figs2/report-contacts.md").find("Partial"), std::string::npos);
+}
+
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law
 // (e = 0.3), a logarithm (e = 0.86) and a converging curve (e = 0.95); it names each regime and
 // finds e_c2 between 0.3 and 0.86.

@@ -70,7 +70,7 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
   o.started_at = std::chrono::steady_clock::now();
   const std::vector<const FigureEntry*> chosen = chosen_figures(o.figure);
   try {
-    if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all, beyond, drives", o.figure, figure_names()));
+    if (chosen.empty()) throw InputError(fmt::format("--figure = '{}' is not a figure; valid: {}all, beyond, drives, columns", o.figure, figure_names()));
     if (o.preset != "quick" && o.preset != "paper" && o.preset != "large" && o.preset != "smoke")
       throw InputError(fmt::format("--preset = '{}' is not a preset; valid: quick, paper, large, smoke", o.preset));
     // As sweep validates it; an empty value is given, and refused.
@@ -193,6 +193,10 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "  drives-ncoll             n_coll(k) at N = 25 on every drive: the three regimes\n"
       "  drives-profiles          density and temperature against height, centre of mass through the plate's cycle\n"
       "  drives                   these three, and report-drives.md\n"
+      "Beyond the paper's columns (docs/columns.md):\n"
+      "  contacts                 contact durations in units of tau_c against height, per N (25..150; large: to 1000),\n"
+      "                           at N (1 - e) = 2, 5 and e = 0.3, k = 1e6..1e10: are the contacts long-lived?\n"
+      "  columns                  this one, and report-columns.md\n"
       "Presets: quick (k = 1e4..1e8, fits over k >= 1e5, T = 1000 for N < 50 and 100 for N >= 50; each figure\n"
       "under 30 minutes on two cores), paper (k = 1e5..1e10, fits over k >= 1e6,\n"
       "T = 1e4 for N < 50 and 1e3 for N >= 50: the paper's grids; about 13.5 CPU-hours in all, most of it fig6 and fig9),\n"
@@ -201,8 +205,8 @@ Subcommand add_reproduce_command(CLI::App& app) {
       "fig6, fig7 and fig9 share one sweep; fig5 and fig8 share points at the largest k. docs/reproduce.md.\n" +
       exit_codes_help("2 bad input (nothing run), 3 a run turned unphysical, 4 a store or output could not be written, 75 "
                       "--time-limit left runs for a repeat of the command"));
-  sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, limit-hard, beyond, or drives-onset, drives-ncoll, drives-profiles, drives; default fig5");
-  sub_->add_option("--preset", impl_->preset, "quick (default), paper, large (paper with fig6, fig7, fig9 to N = 1000) or smoke (a pipeline check)");
+  sub_->add_option("--figure", impl_->figure, "fig1 .. fig10, table1, all, or limit-free, limit-driven, intervals, limit-hard, beyond, or drives-onset, drives-ncoll, drives-profiles, drives, or contacts, columns; default fig5");
+  sub_->add_option("--preset", impl_->preset, "quick (default), paper, large (paper with fig6, fig7, fig9 and contacts to N = 1000) or smoke (a pipeline check)");
   CLI::Option* db_option = sub_->add_option("--db", impl_->db, "results store holding the runs; default reproduce.db")->type_name("FILE");
   CLI::Option* out_option = sub_->add_option("--out", impl_->out, "folder for the figures and the reports; default reproduce")->type_name("DIR");
   auto threads_text = std::make_shared<std::string>();

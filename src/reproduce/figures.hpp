@@ -158,6 +158,7 @@ std::vector<GridBlock> table1_grid(const ReproduceFlags& o);                // t
 std::vector<GridBlock> driven_limit_grid(const ReproduceFlags& o);          // limit-driven
 std::vector<GridBlock> hard_limit_grid(const ReproduceFlags& o);            // limit-hard
 std::vector<GridBlock> drives_grid(const ReproduceFlags& o);                // drives-onset (all N), drives-ncoll (N = 25)
+std::vector<GridBlock> contacts_grid(const ReproduceFlags& o);              // contacts
 
 // The statements of Sec. III.B on the fine structure of n_coll(e) (N = 3..6) tested on these
 // points' curves at their largest k, per seed and combined: a Markdown section ("" without data).
@@ -186,5 +187,7 @@ std::vector<CollapseSpec> free_space_exponent_specs(const ReproduceFlags& o);  /
 FigureOutcome reproduce_driven_exponents(const ReproduceFlags& o, ReproductionLog& log);      // limit-driven
 FigureOutcome reproduce_hard_limit(const ReproduceFlags& o, ReproductionLog& log);            // limit-hard
 FigureOutcome reproduce_collision_intervals(const ReproduceFlags& o, ReproductionLog& log);   // intervals
+// Beyond the paper's columns (group `columns`, contact_figure.cpp): contact durations against height per N.
+FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log);  // contacts
 
 }  // namespace granchain

@@ -2,7 +2,8 @@
 // running a chosen set with its reports. The figures themselves live in sketch_figures.cpp (fig1,
 // fig2), ncoll_figures.cpp (fig3, fig4, fig5, fig8), across_n_figures.cpp (fig6, fig7, fig9,
 // table1), free_space_figures.cpp (fig10), and past the paper hard_limit_figures.cpp (limit-free,
-// limit-driven), interval_figures.cpp (intervals) and driven_hard_limit_figure.cpp (limit-hard).
+// limit-driven), interval_figures.cpp (intervals) and driven_hard_limit_figure.cpp (limit-hard), the
+// vibrating plates in drive_figures.cpp and the contacts of the columns in contact_figure.cpp.
 #include "reproduce/reproduction.hpp"
 
 #include <fmt/format.h>
@@ -40,6 +41,7 @@ const std::vector<FigureEntry>& figures() {
       {"drives-ncoll", "drives: n_coll(k) at N = 25 per drive", reproduce_drive_ncoll, drives_grid, "drives"},
       {"drives-profiles", "drives: density, temperature and centre of mass of the vibrated column", reproduce_drive_profiles, nullptr,
        "drives"},
+      {"contacts", "columns: contact durations against height per N", reproduce_contacts, contacts_grid, "columns"},
   };
   return list;
 }
@@ -51,7 +53,7 @@ std::vector<const FigureEntry*> chosen_figures(const std::string& figure) {
   return chosen;
 }
 
-bool is_figure_group(const std::string& figure) { return figure == "all" || figure == "beyond" || figure == "drives"; }
+bool is_figure_group(const std::string& figure) { return figure == "all" || figure == "beyond" || figure == "drives" || figure == "columns"; }
 
 std::string figure_names() {
   std::string names;

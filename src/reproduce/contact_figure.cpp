@@ -1,0 +1,199 @@
+// `granchain reproduce --figure contacts` (group `columns`): how long neighbours stay in contact,
+// against height in the column, per N. The paper's Summary expects that at large N "the load on the
+// particles near the floor becomes so large that the contacts among them cannot be resolved into
+// binary collisions but may remain as long-lived contacts in the range of k investigated". A binary
+// collision lasts tau_c (Eq. tauc); the figure measures, per pair, the fraction of the window in
+// contact and the mean duration in units of tau_c, and per layer the share of contact time spent in
+// contacts longer than 2 tau_c (analysis/contact_layers.hpp), at fixed c = N (1 - e) across the
+// critical region and on the power-law side, against k.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <tuple>
+
+#include "analysis/contact_layers.hpp"
+#include "reproduce/figures.hpp"
+#include "store/results_store.hpp"
+
+namespace granchain {
+
+namespace {
+
+constexpr int kReplicas = 2;  // the error of a layer's value: half the difference of the two
+constexpr int kLayers = 10;   // tenths of the column, bottom first
+
+// The columns' choices of e: c = N (1 - e) = 2 (uncollapsing, below the paper's 2.6), c = 5 (past
+// e_c2, the paper's 3.0) and e = 0.3 (the power-law side of Fig. powerexpo).
+struct EChoice {
+  const char* label;
+  double c;  // 0: the fixed e below
+  double e;
+};
+const std::vector<EChoice> kChoices = {{"N(1 − e) = 2", 2.0, 0.0}, {"N(1 − e) = 5", 5.0, 0.0}, {"e = 0.3", 0.0, 0.3}};
+
+std::vector<int> contact_ns(const ReproduceFlags& o) {
+  if (o.smoke()) return {10, 25};
+  if (o.large()) return {25, 50, 100, 150, 300, 1000};
+  if (o.paper()) return {25, 50, 100, 150};
+  return {25, 50, 100};
+}
+std::string contact_k(const ReproduceFlags& o) { return o.paper() ? "1e6,1e8,1e10" : o.smoke() ? "1e4" : "1e4,1e6"; }
+std::string contact_T(const ReproduceFlags& o) { return o.paper() ? "200" : o.smoke() ? "5" : "50"; }
+
+std::string e_of(const EChoice& c, int N) {
+  return c.c > 0 ? e_list_at_n_one_minus_e(N, {c.c}) : fmt::format("{:g}", c.e);
+}
+
+// A value over the replicas: their mean and half their spread (two replicas: |a - b| / 2, the
+// standard error of the mean of two).
+struct ReplicaValue {
+  double value = 0, error = 0;
+};
+ReplicaValue over_replicas(const std::vector<double>& x) {
+  ReplicaValue r;
+  if (x.empty()) return r;
+  for (double v : x) r.value += v;
+  r.value /= static_cast<double>(x.size());
+  if (x.size() >= 2) {
+    double s = 0;
+    for (double v : x) s += (v - r.value) * (v - r.value);
+    r.error = std::sqrt(s / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()));
+  }
+  return r;
+}
+
+std::string value_text(const ReplicaValue& v, int digits) { return plus_minus(v.value, v.error, digits); }
+
+}  // namespace
+
+std::vector<GridBlock> contacts_grid(const ReproduceFlags& o) {
+  std::vector<GridBlock> blocks;
+  for (int N : contact_ns(o)) {
+    std::string es;
+    for (const EChoice& c : kChoices) es += (es.empty() ? "" : ",") + e_of(c, N);
+    GridBlock b{std::to_string(N), es, contact_k(o), contact_T(o), "1", kReplicas};
+    blocks.push_back(b);
+  }
+  return blocks;
+}
+
+FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) {
+  const std::vector<GridBlock> blocks = contacts_grid(o);
+  const std::vector<SweepPoint> points = grid_points(blocks);
+  const std::vector<std::string> failures = run_missing_points(points, o, o.figure, log);
+  ResultsStore store(o.db, o.stored_only ? ResultsStore::Access::ReadOnly : ResultsStore::Access::ReadWrite);
+
+  // Each (N, e, k): the stored replicas' results.
+  struct Cell {
+    int N;
+    double e, k;
+    std::vector<RunResult> runs;
+  };
+  std::map<std::tuple<int, double, double>, Cell> cells;
+  double cpu = 0;
+  int stationary = 0, stored = 0;
+  for (const SweepPoint& p : points) {
+    std::optional<ResultsStore::ReadBack> r = store.read_back_run(p.spec);
+    if (!r) continue;
+    ++stored;
+    cpu += r->result.cpu_seconds > 0 ? r->result.cpu_seconds : r->result.wall_seconds;
+    stationary += r->result.stationary() ? 1 : 0;
+    Cell& c = cells[{p.spec.params.N, p.spec.params.e, p.spec.params.k}];
+    c.N = p.spec.params.N;
+    c.e = p.spec.params.e;
+    c.k = p.spec.params.k;
+    if (r->result.contacts.size() >= 2) c.runs.push_back(std::move(r->result));
+  }
+  if (o.stored_only && stored == 0) throw NothingStored(fmt::format("none of the {} runs of contacts is in {}", points.size(), o.db));
+  if (stored < static_cast<int>(points.size()))
+    log.partial.push_back(fmt::format("contacts: {} of {} runs", stored, points.size()));
+
+  nlohmann::json plot = {{"choices", nlohmann::json::array()}, {"long_contact", analysis::kLongContact}};
+  std::string md = fmt::format(
+      "Command: `{}`. Contact durations of the driven column (k_B T0 = 1, exact engine, T = {}, transient T/10, {} replicas per "
+      "point), N = {}, at c = N(1 − e) = 2 and 5 and at e = 0.3, k = {}. Per pair (i, i+1): the fraction of the window in "
+      "contact and the mean contact duration in units of τ_c (a binary collision lasts τ_c, Eq. tauc); per tenth of the column: "
+      "the share of its time in contact spent in contacts longer than {:g} τ_c (three or more particles held together): one "
+      "minus the time of the shorter contacts (duration histograms in quarter octaves, each bin at its geometric centre) over the "
+      "time in contact (contacts still open at the window's end included). Values are the mean of the replicas, errors half "
+      "their difference. {} of {} runs stored, {} stationary by the run's own verdict; {:.2f} CPU-hours. Figure: `contacts.png` "
+      "(and .pdf): per choice of e, at the largest k, (top) fraction in contact and (middle) mean duration against the pair's "
+      "height i/N, one curve per N; (bottom) the long-contact share of the bottom tenth against k.\n",
+      reproduce_command_line(o), contact_T(o), kReplicas, blocks.front().N + " … " + blocks.back().N, contact_k(o),
+      analysis::kLongContact, stored, points.size(), stationary, cpu / 3600.0);
+
+  for (const EChoice& choice : kChoices) {
+    nlohmann::json jc = {{"label", choice.label}, {"columns", nlohmann::json::array()}};
+    md += fmt::format("\n### {}\n\n| N | e | k | bottom tenth: in contact | mean / τ_c | longest / τ_c | share > {:g} τ_c | "
+                      "whole column: in contact | mean / τ_c | longest / τ_c | share > {:g} τ_c | tenth most in contact |\n"
+                      "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+                      choice.label, analysis::kLongContact, analysis::kLongContact);
+    for (int N : contact_ns(o)) {
+      const double e = std::stod(e_of(choice, N));
+      nlohmann::json col = {{"N", N}, {"e", e}, {"k", nlohmann::json::array()}};
+      for (const auto& [key, cell] : cells) {
+        if (cell.N != N || std::abs(cell.e - e) > 1e-12 || cell.runs.empty()) continue;
+        // Per layer and per replica, then over the replicas.
+        std::vector<std::vector<analysis::ContactLayer>> tenths;
+        std::vector<analysis::ContactLayer> whole;
+        for (const RunResult& r : cell.runs) {
+          const double window = r.spec.T / r.law.tau_c;
+          tenths.push_back(analysis::contact_layers(r.contacts, kLayers, window));
+          whole.push_back(analysis::contact_layer(r.contacts, 1, static_cast<int>(r.contacts.size()) - 1, window));
+        }
+        const auto over = [&](const std::vector<analysis::ContactLayer>& ls, auto field) {
+          std::vector<double> x;
+          for (const auto& l : ls) x.push_back(field(l));
+          return over_replicas(x);
+        };
+        const auto frac = [](const analysis::ContactLayer& l) { return l.contact_fraction; };
+        const auto mean = [](const analysis::ContactLayer& l) { return l.mean_duration; };
+        const auto longest = [](const analysis::ContactLayer& l) { return l.longest; };
+        const auto share = [](const analysis::ContactLayer& l) { return l.long_share; };
+        std::vector<analysis::ContactLayer> bottom;
+        for (const auto& t : tenths) bottom.push_back(t.front());
+        int top_layer = 0;
+        double top_fraction = -1;
+        for (int l = 0; l < static_cast<int>(tenths.front().size()); ++l) {
+          std::vector<analysis::ContactLayer> ls;
+          for (const auto& t : tenths) ls.push_back(t[static_cast<std::size_t>(l)]);
+          const double f = over(ls, frac).value;
+          if (f > top_fraction) top_fraction = f, top_layer = l;
+        }
+        md += fmt::format("| {} | {:.6g} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({:.3f}) |\n", N, e, power_of_ten_text(cell.k),
+                          value_text(over(bottom, frac), 3), value_text(over(bottom, mean), 3), value_text(over(bottom, longest), 3),
+                          value_text(over(bottom, share), 3), value_text(over(whole, frac), 3), value_text(over(whole, mean), 3),
+                          value_text(over(whole, longest), 3), value_text(over(whole, share), 3), top_layer + 1, top_fraction);
+        // Per pair, over the replicas, for the profiles.
+        nlohmann::json height = nlohmann::json::array(), fraction = nlohmann::json::array(), duration = nlohmann::json::array();
+        const std::size_t pairs = cell.runs.front().contacts.size();
+        for (std::size_t i = 1; i < pairs; ++i) {
+          double f = 0, d = 0;
+          for (const RunResult& r : cell.runs) f += r.contacts[i].contact_fraction, d += r.contacts[i].mean;
+          height.push_back(static_cast<double>(i) / N);
+          fraction.push_back(f / static_cast<double>(cell.runs.size()));
+          duration.push_back(d / static_cast<double>(cell.runs.size()));
+        }
+        const ReplicaValue bs = over(bottom, share);
+        col["k"].push_back({{"k", cell.k}, {"height", height}, {"fraction", fraction}, {"mean", duration},
+                            {"bottom_long_share", bs.value}, {"bottom_long_share_err", bs.error}});
+      }
+      if (!col["k"].empty()) jc["columns"].push_back(col);
+    }
+    plot["choices"].push_back(jc);
+  }
+  md += "\nTenths are counted from the floor (1: pairs 1 … N/10). The contact fraction of a layer is the mean over its pairs; "
+        "its mean duration weights each pair by its number of contacts.\n";
+  FigureOutcome out;
+  out.drawn = draw_figure(o, "contacts", plot, "contacts.py");
+  out.status = failures.empty() ? FigureStatus::Done : FigureStatus::PointsFailed;
+  out.failed_points = failures;
+  out.run_seconds = cpu;
+  out.markdown = md;
+  return out;
+}
+
+}  // namespace granchain
