@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# A Slurm job array that computes every run of a `granchain reproduce` figure (or group) and preset,
+# the large preset's across-N columns by default, in SHARDS shards with one store per shard.
+#
+#   bash scripts/slurm-reproduce-array.sh                 submit all shards (creates shards/ for the logs)
+#   bash scripts/slurm-reproduce-array.sh --array=7       resubmit shard 7 (one that exited 75, its
+#                                                         walltime spent, or one killed by a node
+#                                                         failure): it resumes where it stopped
+#   ./build/granchain merge --into data/paper/paper.db shards/large-*.db
+#   ./build/granchain reproduce --figure fig6 --preset large --db data/paper/paper.db --out OUT
+#                                                         (and fig7, fig9: they share the runs; nothing is run again)
+#
+# FIGURE and PRESET (environment, default fig6 and large) choose the runs: task i runs share i/SHARDS
+# of each sweep that `granchain reproduce --figure FIGURE --preset PRESET --print-sweeps` lists, in
+# that order, into shards/PRESET-i.db, each sweep with the part of the job's walltime still left
+# (--time-limit: a point starts only if it is predicted to end within it). A sweep that leaves points
+# does not stop the task: later sweeps may hold points that still fit. The task exits with the first
+# failure's code (3: a run turned unphysical, 4: the store failed), else 75 when any sweep left
+# points (resubmit it), else 0.
+# Run from the repository root. Outside a job the script submits itself with sbatch (extra arguments
+# go to sbatch); the number of shards is fixed here, not read from the array, so that a resubmitted
+# single task still runs share i of SHARDS.
+#SBATCH --job-name=granchain-reproduce
+#SBATCH --array=1-64
+#SBATCH --cpus-per-task=8
+#SBATCH --time=24:00:00
+#SBATCH --output=shards/reproduce-%a.log
+set -euo pipefail
+SHARDS=64
+WALLTIME_S=$((24 * 3600 - 1800))  # the job's --time less half an hour for the last point's margin and the store
+GRANCHAIN=${GRANCHAIN:-./build/granchain}
+FIGURE=${FIGURE:-fig6}
+PRESET=${PRESET:-large}
+
+if [ -z "${SLURM_JOB_ID:-}" ]; then
+  mkdir -p shards  # Slurm opens the --output log before the job starts: the folder must exist
+  exec sbatch "$@" "$0"
+fi
+
+i=${SLURM_ARRAY_TASK_ID:?not a job array task (SLURM_ARRAY_TASK_ID is unset)}
+if ! [[ "$i" =~ ^[0-9]+$ ]] || [ "$i" -lt 1 ] || [ "$i" -gt "$SHARDS" ]; then
+  echo "slurm-reproduce-array: array task $i is outside 1..$SHARDS (submit with --array=1-$SHARDS)" >&2
+  exit 2
+fi
+mkdir -p shards
+deadline=$((SECONDS + WALLTIME_S))
+sweeps=$("$GRANCHAIN" reproduce --figure "$FIGURE" --preset "$PRESET" --print-sweeps | grep '^granchain sweep ' || true)
+if [ -z "$sweeps" ]; then
+  echo "slurm-reproduce-array: --figure $FIGURE --preset $PRESET lists no sweeps" >&2
+  exit 2
+fi
+status=0
+left=0
+while read -r line; do
+  remaining=$((deadline - SECONDS))
+  if [ "$remaining" -lt 1 ]; then
+    left=1
+    break
+  fi
+  read -ra words <<< "${line#granchain }"
+  rc=0
+  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/$PRESET-$i.db" \
+      --time-limit "${remaining}s" --progress -q || rc=$?
+  if [ "$rc" -eq 75 ]; then
+    left=1
+  elif [ "$rc" -ne 0 ] && [ "$status" -eq 0 ]; then
+    status=$rc
+  fi
+done <<< "$sweeps"
+if [ "$status" -ne 0 ]; then
+  exit "$status"
+fi
+if [ "$left" -eq 1 ]; then
+  exit 75
+fi
+exit 0

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# scripts/slurm-reproduce-array.sh with Slurm and granchain faked: outside a job it creates shards/
+# and submits itself; inside task i it runs share i/64 of every sweep that reproduce --print-sweeps
+# lists, each with the walltime left, goes on after a sweep that left points (exit 75) and exits
+# 75, and exits with a failure's code before 75; a task outside 1..64 is refused. Then the real
+# binary: every sweep of the large preset's across-N figures, as the script runs it, is accepted
+# (a dry run of shard 1/64), and the 64 shards of one of them list each of its points exactly once.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+binary=$1
+script="$repo/scripts/slurm-reproduce-array.sh"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+mkdir bin
+cat > bin/sbatch <<'STUB'
+#!/usr/bin/env bash
+echo "sbatch $*" > sbatch.args
+STUB
+# The fake granchain: --print-sweeps lists two sweeps; a sweep records its arguments and exits with
+# the code FAKE_CODES gives it in turn (default 0).
+cat > bin/granchain <<'STUB'
+#!/usr/bin/env bash
+if [ "$1" = reproduce ]; then
+  echo "reproduce $*" > reproduce.args
+  printf '%s\n' "# 96 points, predicted 1 CPU-hours" "granchain sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1" \
+    "# 264 points" "granchain sweep --N 300 --e 0.99,0.1 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4" "# 360 distinct points"
+  exit 0
+fi
+echo "$*" >> sweeps.args
+n=$(wc -l < sweeps.args)
+codes=(${FAKE_CODES:-0 0})
+exit "${codes[$((n - 1))]}"
+STUB
+chmod +x bin/sbatch bin/granchain
+fail() { echo "FAIL: $*" >&2; exit 1; }
+task() {  # task 7 of the array with the fake binary; prints its exit code
+  rm -f sweeps.args
+  local rc=0
+  SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 SLURM_CPUS_PER_TASK=4 GRANCHAIN="$work/bin/granchain" FAKE_CODES="$1" bash "$script" || rc=$?
+  echo "$rc"
+}
+
+# Submission: shards/ exists before sbatch runs; the extra arguments reach sbatch.
+env -u SLURM_JOB_ID PATH="$work/bin:$PATH" bash "$script" --array=7
+[ -d shards ] || fail "shards/ was not created before submission"
+grep -q -- "--array=7 .*slurm-reproduce-array.sh" sbatch.args || fail "sbatch got: $(cat sbatch.args)"
+
+# Task 7: both sweeps, share 7/64, the task's store, a time limit within the job's walltime.
+[ "$(task "0 0")" -eq 0 ] || fail "task 7 did not succeed"
+grep -q -- "--figure fig6 --preset large --print-sweeps" reproduce.args || fail "reproduce got: $(cat reproduce.args)"
+[ "$(wc -l < sweeps.args)" -eq 2 ] || fail "task 7 ran $(wc -l < sweeps.args) sweeps, not 2"
+head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/large-7.db --time-limit [0-9]*s --progress -q$" ||
+  fail "first sweep: $(head -1 sweeps.args)"
+tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64" || fail "second sweep: $(tail -1 sweeps.args)"
+limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
+[ "$limit" -gt 84000 ] && [ "$limit" -le 84600 ] || fail "time limit $limit s, not the walltime less half an hour"
+# A sweep that left points: the next one still runs, and the task asks to be resubmitted.
+[ "$(task "75 0")" -eq 75 ] || fail "a sweep that left points did not make the task exit 75"
+[ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the sweep after one that left points did not run"
+# A failure's code comes before 75.
+[ "$(task "75 3")" -eq 3 ] || fail "an unphysical run's exit 3 was hidden"
+# A task outside the array's range.
+if SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=65 GRANCHAIN="$work/bin/granchain" bash "$script" 2> err.txt; then
+  fail "task 65 was accepted"
+fi
+grep -q "outside 1..64" err.txt || fail "task 65: $(cat err.txt)"
+
+# The real binary: every sweep of the large preset, with the flags the script adds, is accepted.
+"$binary" reproduce --figure fig6 --preset large --print-sweeps | grep '^granchain sweep ' > large.txt
+[ "$(wc -l < large.txt)" -ge 10 ] || fail "the large preset lists $(wc -l < large.txt) sweeps"
+while read -r line; do
+  read -ra words <<< "${line#granchain }"
+  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit 84600s --dry-run > /dev/null ||
+    fail "refused: $line"
+done < large.txt
+# The 64 shards of the N = 1000 replicas' sweep list each of its points once.
+read -ra words <<< "$(grep -- '--N 1000 .*--replicas' large.txt | sed 's/^granchain //')"
+"$binary" "${words[@]}" --db "$work/none.db" --dry-run | awk '/driven_column/ {print $4}' | sort > all.txt
+: > shards.txt
+for i in $(seq 1 64); do "$binary" "${words[@]}" --db "$work/none.db" --dry-run --shard "$i/64" | awk '/driven_column/ {print $4}' >> shards.txt; done
+sort shards.txt > shards_sorted.txt
+[ "$(wc -l < all.txt)" -gt 100 ] || fail "the N = 1000 sweep has $(wc -l < all.txt) points"
+cmp -s all.txt shards_sorted.txt || fail "the shards do not partition the N = 1000 sweep"
+echo "slurm reproduce array script: submission, shards, time limits, exit codes and the large preset's sweeps OK"
