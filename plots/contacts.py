@@ -7,7 +7,8 @@ One column per choice of e (N(1 - e) = 2, N(1 - e) = 5, e = 0.3), one colour per
 fraction of the window each pair (i, i+1) spends in contact and (middle) its mean contact duration
 in units of tau_c, against the pair's height i/N, at the largest k; (bottom) the share of the
 bottom tenth's contact time spent in contacts longer than 2 tau_c (held by three or more
-particles) against k, with the replicas' error.
+particles) against k, with the replicas' error; (last row) the distribution of the bottom tenth's
+contact durations at the largest k: the fraction of its contacts per octave of duration / tau_c.
 """
 import sys
 
@@ -24,11 +25,11 @@ def main(argv):
     choices = data["choices"]
     Ns = sorted({col["N"] for ch in choices for col in ch["columns"]})
     palette = dict(zip(Ns, colours(max(len(Ns), 2))))
-    fig, axes = figure(PAGE, 6.2, nrows=3, ncols=len(choices) + 1,
+    fig, axes = figure(PAGE, 8.0, nrows=4, ncols=len(choices) + 1,
                        gridspec_kw={"width_ratios": [1] * len(choices) + [0.32]}, squeeze=False)
     handles = {}
     for c, ch in enumerate(choices):
-        a_f, a_m, a_s = axes[0][c], axes[1][c], axes[2][c]
+        a_f, a_m, a_s, a_h = axes[0][c], axes[1][c], axes[2][c], axes[3][c]
         for col in ch["columns"]:
             ks = col["k"]
             if not ks:
@@ -44,6 +45,13 @@ def main(argv):
             s = np.array([x["bottom_long_share"] for x in ks])[order]
             s_err = np.array([x["bottom_long_share_err"] for x in ks])[order]
             a_s.errorbar(k[order], s, yerr=s_err, color=colour, fmt="o-", ms=2.5, capsize=1.5)
+            hist = top["bottom_histogram"]
+            counts = np.array(hist["counts"], dtype=float)
+            if counts.sum() > 0:
+                bins = hist["first_bin"] + np.arange(len(counts))
+                centre = np.exp2(data["log2_min"] + (bins + 0.5) / data["bins_per_octave"])
+                density = counts / counts.sum() * data["bins_per_octave"]  # per octave
+                a_h.plot(centre, np.where(density > 0, density, np.nan), color=colour, marker=".", ms=2)
         ks_all = sorted({x["k"] for col in ch["columns"] for x in col["k"]})
         letters = "abc"[c]
         a_f.set_title("(%s1) %s" % (letters, ch["label"]), loc="left")
@@ -51,6 +59,11 @@ def main(argv):
             a_f.text(0.97, 0.95, "k = %.0e" % ks_all[-1], transform=a_f.transAxes, ha="right", va="top", fontsize=7)
         a_m.set_title("(%s2) mean contact duration" % letters, loc="left")
         a_s.set_title("(%s3) bottom tenth, > %g $\\tau_c$" % (letters, data["long_contact"]), loc="left")
+        a_h.set_title("(%s4) bottom tenth's durations" % letters, loc="left")
+        a_h.set_xscale("log", base=2)
+        a_h.set_yscale("log")
+        a_h.axvline(data["long_contact"], color="0.6", lw=0.6, ls=":")
+        a_h.set_xlabel(r"duration [$\tau_c$]")
         a_f.set_ylim(0, 1.02)
         a_m.set_yscale("log")
         a_m.yaxis.set_major_formatter(FormatStrFormatter("%g"))
@@ -66,7 +79,8 @@ def main(argv):
             a_f.set_ylabel("fraction of the window")
             a_m.set_ylabel(r"duration [$\tau_c$]")
             a_s.set_ylabel("share of contact time")
-    for row in range(3):
+            a_h.set_ylabel("contacts per octave")
+    for row in range(4):
         axes[row][-1].set_axis_off()
     names = sorted(handles)
     legend_axes(axes[0][-1], [handles[n] for n in names], ["N = %d" % n for n in names], loc="center left")

@@ -111,7 +111,10 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
   if (stored < static_cast<int>(points.size()))
     log.partial.push_back(fmt::format("contacts: {} of {} runs", stored, points.size()));
 
-  nlohmann::json plot = {{"choices", nlohmann::json::array()}, {"long_contact", analysis::kLongContact}};
+  nlohmann::json plot = {{"choices", nlohmann::json::array()},
+                         {"long_contact", analysis::kLongContact},
+                         {"log2_min", ContactDurations::kLog2Min},
+                         {"bins_per_octave", ContactDurations::kBinsPerOctave}};
   std::string md = fmt::format(
       "Command: `{}`. Contact durations of the driven column (k_B T0 = 1, exact engine, T = {}, transient T/10, {} replicas per "
       "point), N = {}, at c = N(1 − e) = 2 and 5 and at e = 0.3, k = {}. Per pair (i, i+1): the fraction of the window in "
@@ -121,7 +124,8 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
       "time in contact (contacts still open at the window's end included). Values are the mean of the replicas, errors half "
       "their difference. {} of {} runs stored, {} stationary by the run's own verdict; {:.2f} CPU-hours. Figure: `contacts.png` "
       "(and .pdf): per choice of e, at the largest k, (top) fraction in contact and (middle) mean duration against the pair's "
-      "height i/N, one curve per N; (bottom) the long-contact share of the bottom tenth against k.\n",
+      "height i/N, one curve per N; (third row) the long-contact share of the bottom tenth against k; (bottom) the distribution of "
+      "the bottom tenth's contact durations at the largest k (contacts per octave of duration, normalised to 1).\n",
       reproduce_command_line(o), contact_T(o), kReplicas, blocks.front().N + " … " + blocks.back().N, contact_k(o),
       analysis::kLongContact, stored, points.size(), stationary, cpu / 3600.0);
 
@@ -177,9 +181,23 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
           fraction.push_back(f / static_cast<double>(cell.runs.size()));
           duration.push_back(d / static_cast<double>(cell.runs.size()));
         }
+        // The bottom tenth's durations pooled over its pairs and the replicas: contacts per bin of
+        // log2(duration / tau_c) from bin `first_bin` on (the contacts that ended in the window).
+        std::map<int, std::uint64_t> pooled;
+        for (const RunResult& r : cell.runs)
+          for (int i = tenths.front().front().first_pair; i <= tenths.front().front().last_pair; ++i) {
+            const PairContacts& p = r.contacts[static_cast<std::size_t>(i)];
+            for (std::size_t j = 0; j < p.histogram.size(); ++j)
+              if (p.histogram[j] > 0) pooled[p.first_bin + static_cast<int>(j)] += p.histogram[j];
+          }
+        nlohmann::json counts = nlohmann::json::array();
+        const int first_bin = pooled.empty() ? 0 : pooled.begin()->first;
+        if (!pooled.empty())
+          for (int b = first_bin; b <= pooled.rbegin()->first; ++b) counts.push_back(pooled.count(b) ? pooled[b] : 0);
         const ReplicaValue bs = over(bottom, share);
         col["k"].push_back({{"k", cell.k}, {"height", height}, {"fraction", fraction}, {"mean", duration},
-                            {"bottom_long_share", bs.value}, {"bottom_long_share_err", bs.error}});
+                            {"bottom_long_share", bs.value}, {"bottom_long_share_err", bs.error},
+                            {"bottom_histogram", {{"first_bin", first_bin}, {"counts", counts}}}});
       }
       if (!col["k"].empty()) jc["columns"].push_back(col);
     }
