@@ -43,7 +43,8 @@ def main(argv):
             k = np.array([x["k"] for x in ks])
             order = np.argsort(k)
             s = np.array([x["bottom_long_share"] for x in ks])[order]
-            s_err = np.array([x["bottom_long_share_err"] for x in ks])[order]
+            s_err = np.array([np.nan if x["bottom_long_share_err"] is None else x["bottom_long_share_err"] for x in ks],
+                             dtype=float)[order]
             a_s.errorbar(k[order], s, yerr=s_err, color=colour, fmt="o-", ms=2.5, capsize=1.5)
             hist = top["bottom_histogram"]
             counts = np.array(hist["counts"], dtype=float)

@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "analysis/contact_layers.hpp"
+#include "analysis/estimate_format.hpp"
 #include "reproduce/figures.hpp"
 #include "store/results_store.hpp"
 
@@ -47,10 +48,10 @@ std::string e_of(const EChoice& c, int N) {
   return c.c > 0 ? e_list_at_n_one_minus_e(N, {c.c}) : fmt::format("{:g}", c.e);
 }
 
-// A value over the replicas: their mean and half their spread (two replicas: |a - b| / 2, the
-// standard error of the mean of two).
+// A value over the replicas: their mean and the standard error of the mean (two replicas:
+// |a - b| / 2); NaN from a single replica (a point whose second replica is not stored yet).
 struct ReplicaValue {
-  double value = 0, error = 0;
+  double value = 0, error = std::nan("");
 };
 ReplicaValue over_replicas(const std::vector<double>& x) {
   ReplicaValue r;
@@ -65,7 +66,12 @@ ReplicaValue over_replicas(const std::vector<double>& x) {
   return r;
 }
 
-std::string value_text(const ReplicaValue& v, int digits) { return plus_minus(v.value, v.error, digits); }
+// "0.0130 ± 0.0021" (the error to two significant digits), "0.013 (one run)" without an error.
+std::string value_text(const ReplicaValue& v) {
+  if (std::isfinite(v.error) && v.error > 0) return format_with_error(v.value, v.error);
+  if (std::isfinite(v.error)) return fmt::format("{:.4g} ± 0", v.value);  // the replicas agree exactly
+  return fmt::format("{:.4g} (one run)", v.value);
+}
 
 }  // namespace
 
@@ -122,7 +128,7 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
       "the share of its time in contact spent in contacts longer than {:g} τ_c (three or more particles held together): one "
       "minus the time of the shorter contacts (duration histograms in quarter octaves, each bin at its geometric centre) over the "
       "time in contact (contacts still open at the window's end included). Values are the mean of the replicas, errors half "
-      "their difference. {} of {} runs stored, {} stationary by the run's own verdict; {:.2f} CPU-hours. Figure: `contacts.png` "
+      "their difference (\"one run\" where the second is not stored yet). {} of {} runs stored, {} stationary by the run's own verdict; {:.2f} CPU-hours. Figure: `contacts.png` "
       "(and .pdf): per choice of e, at the largest k, (top) fraction in contact and (middle) mean duration against the pair's "
       "height i/N, one curve per N; (third row) the long-contact share of the bottom tenth against k; (bottom) the distribution of "
       "the bottom tenth's contact durations at the largest k (contacts per octave of duration, normalised to 1).\n",
@@ -168,9 +174,9 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
           if (f > top_fraction) top_fraction = f, top_layer = l;
         }
         md += fmt::format("| {} | {:.6g} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({:.3f}) |\n", N, e, power_of_ten_text(cell.k),
-                          value_text(over(bottom, frac), 3), value_text(over(bottom, mean), 3), value_text(over(bottom, longest), 3),
-                          value_text(over(bottom, share), 3), value_text(over(whole, frac), 3), value_text(over(whole, mean), 3),
-                          value_text(over(whole, longest), 3), value_text(over(whole, share), 3), top_layer + 1, top_fraction);
+                          value_text(over(bottom, frac)), value_text(over(bottom, mean)), value_text(over(bottom, longest)),
+                          value_text(over(bottom, share)), value_text(over(whole, frac)), value_text(over(whole, mean)),
+                          value_text(over(whole, longest)), value_text(over(whole, share)), top_layer + 1, top_fraction);
         // Per pair, over the replicas, for the profiles.
         nlohmann::json height = nlohmann::json::array(), fraction = nlohmann::json::array(), duration = nlohmann::json::array();
         const std::size_t pairs = cell.runs.front().contacts.size();
