@@ -5,10 +5,11 @@
 Usage: /usr/bin/python3 plots/contacts.py contacts.json PREFIX   -> PREFIX.png and PREFIX.pdf
 One column per choice of e (N(1 - e) = 2, N(1 - e) = 5, e = 0.3), one colour per N: (top) the
 fraction of the window each pair (i, i+1) spends in contact and (middle) its mean contact duration
-in units of tau_c, against the pair's height i/N, at the largest k; (bottom) the share of the
+in units of tau_c, against the pair's height i/N, at the smallest k (where contacts last longest);
+(third row) the share of the
 bottom tenth's contact time spent in contacts longer than 2 tau_c (held by three or more
 particles) against k, with the replicas' error; (last row) the distribution of the bottom tenth's
-contact durations at the largest k: the fraction of its contacts per octave of duration / tau_c.
+contact durations at the smallest k: the fraction of its contacts per octave of duration / tau_c.
 """
 import sys
 
@@ -34,7 +35,7 @@ def main(argv):
             ks = col["k"]
             if not ks:
                 continue
-            top = max(ks, key=lambda x: x["k"])
+            top = min(ks, key=lambda x: x["k"])
             colour = palette[col["N"]]
             line, = a_f.plot(top["height"], top["fraction"], color=colour)
             mean = np.array(top["mean"], dtype=float)
@@ -42,7 +43,7 @@ def main(argv):
             handles[col["N"]] = line
             k = np.array([x["k"] for x in ks])
             order = np.argsort(k)
-            s = np.array([x["bottom_long_share"] for x in ks])[order]
+            s = np.array([np.nan if x["bottom_long_share"] is None else x["bottom_long_share"] for x in ks], dtype=float)[order]
             s_err = np.array([np.nan if x["bottom_long_share_err"] is None else x["bottom_long_share_err"] for x in ks],
                              dtype=float)[order]
             a_s.errorbar(k[order], s, yerr=s_err, color=colour, fmt="o-", ms=2.5, capsize=1.5)
@@ -57,7 +58,7 @@ def main(argv):
         letters = "abc"[c]
         a_f.set_title("(%s1) %s" % (letters, ch["label"]), loc="left")
         if ks_all:
-            a_f.text(0.97, 0.95, "k = %.0e" % ks_all[-1], transform=a_f.transAxes, ha="right", va="top", fontsize=7)
+            a_f.text(0.97, 0.95, "k = %.0e" % ks_all[0], transform=a_f.transAxes, ha="right", va="top", fontsize=7)
         a_m.set_title("(%s2) mean contact duration" % letters, loc="left")
         a_s.set_title("(%s3) bottom tenth, > %g $\\tau_c$" % (letters, data["long_contact"]), loc="left")
         a_h.set_title("(%s4) bottom tenth's durations" % letters, loc="left")

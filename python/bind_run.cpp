@@ -94,7 +94,8 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
   d["K"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.value; });
   d["K_err"] = per_particle(r.profiles, [](const ParticleProfile& p) { return p.kinetic.error; });
   // Contact durations (soft spheres), per pair: index 0 the plate's contact, i the pair (i, i+1);
-  // mean and longest in units of tau_c, the fraction of the window in contact, the histogram of
+  // mean and longest in units of tau_c, the fraction of the window in contact (and in contacts
+  // longer than long_contact tau_c: long_fraction), the histogram of
   // log2(duration / tau_c) in quarter octaves from bin first_bin (edges 2^(log2_min + b / 4)).
   if (!r.contacts.empty()) {
     py::dict c;
@@ -102,6 +103,8 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
     c["mean"] = per_particle(r.contacts, [](const PairContacts& p) { return p.mean; });
     c["longest"] = per_particle(r.contacts, [](const PairContacts& p) { return p.longest; });
     c["contact_fraction"] = per_particle(r.contacts, [](const PairContacts& p) { return p.contact_fraction; });
+    c["long_fraction"] = per_particle(r.contacts, [](const PairContacts& p) { return p.long_fraction; });
+    c["long_contact"] = ContactDurations::kLongContact;
     c["open_at_end"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.open_at_end); });
     c["began_before"] = per_particle(r.contacts, [](const PairContacts& p) { return static_cast<double>(p.began_before); });
     py::list hist;

@@ -40,6 +40,7 @@ TEST(ContactDurations, ABinaryCollisionLastsTauC) {
       // log2(1) = 0 lies in bin -kLog2Min * kBinsPerOctave.
       EXPECT_EQ(c.first_bin, -ContactDurations::kLog2Min * ContactDurations::kBinsPerOctave);
       ASSERT_EQ(c.histogram.size(), 1u);
+      EXPECT_EQ(c.long_fraction, 0.0);  // a binary collision is not a long contact
       EXPECT_NEAR(c.contact_fraction, contact_law(ChainParameters{.N = 2, .g = 0.0, .k = k, .e = 0.6}).tau_c / 10.0, 1e-12);
     }
   }
@@ -85,6 +86,7 @@ TEST(ContactDurations, ARestingColumnKeepsItsBottomContactClosed) {
   ASSERT_EQ(rest.contacts.size(), 10u);
   EXPECT_GT(rest.contacts[1].contact_fraction, 0.99);
   EXPECT_GT(rest.contacts[1].longest, 0.99 * spec.T / rest.law.tau_c);
+  EXPECT_DOUBLE_EQ(rest.contacts[1].long_fraction, rest.contacts[1].contact_fraction);  // one contact, held throughout
 
   spec.params = ChainParameters{.N = 10, .k = 1e4, .e = 0.95, .kT0 = 1.0};
   const RunResult fluid = run_driven_column(spec);
@@ -101,6 +103,7 @@ TEST(ContactDurations, ARestingColumnKeepsItsBottomContactClosed) {
     EXPECT_EQ(back.contacts[i].histogram, fluid.contacts[i].histogram);
     EXPECT_DOUBLE_EQ(back.contacts[i].mean, fluid.contacts[i].mean);
     EXPECT_DOUBLE_EQ(back.contacts[i].contact_fraction, fluid.contacts[i].contact_fraction);
+    EXPECT_DOUBLE_EQ(back.contacts[i].long_fraction, fluid.contacts[i].long_fraction);
   }
   spec.engine.kind = EngineKind::Hard;
   EXPECT_TRUE(run_driven_column(spec).contacts.empty());

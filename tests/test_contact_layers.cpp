@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <utility>
 
 #include "analysis/contact_layers.hpp"
 #include "simulation/driven_run.hpp"
@@ -16,8 +15,7 @@ using analysis::contact_layer;
 using analysis::contact_layers;
 
 // Pair 1: ten binary collisions (all in the bin of 1 tau_c), 10.5 tau_c in contact; pair 2: one
-// contact open through the whole window of 1000 tau_c, in no histogram. The short time is the ten
-// contacts at their bin's geometric centre 2^(1/8) tau_c; the open contact is long.
+// contact open through the whole window of 1000 tau_c, in no histogram but long.
 TEST(ContactLayers, AContactOpenThroughTheWindowIsLong) {
   std::vector<PairContacts> pairs(3);
   pairs[1].contacts = 10;
@@ -29,32 +27,33 @@ TEST(ContactLayers, AContactOpenThroughTheWindowIsLong) {
   pairs[2].open_at_end = 1;
   pairs[2].longest = 1000.0;
   pairs[2].contact_fraction = 1.0;
+  pairs[2].long_fraction = 1.0;
   ASSERT_EQ(ContactDurations::bin_lower_edge(pairs[1].first_bin), 1.0);
-  const analysis::ContactLayer both = contact_layer(pairs, 1, 2, 1000.0);
+  const analysis::ContactLayer both = contact_layer(pairs, 1, 2);
   EXPECT_EQ(both.contacts, 10u);
   EXPECT_DOUBLE_EQ(both.mean_duration, 1.05);
   EXPECT_DOUBLE_EQ(both.longest, 1000.0);
   EXPECT_DOUBLE_EQ(both.contact_fraction, (10.5 / 1000.0 + 1.0) / 2.0);
-  EXPECT_NEAR(both.long_share, 1.0 - 10.0 * std::exp2(0.125) / 1010.5, 1e-12);
-  // Alone, the binary collisions are short within the bins' resolution (the centre overestimates
-  // their 10.5 tau_c by 4 %: clamped at no long time).
-  EXPECT_EQ(contact_layer(pairs, 1, 1, 1000.0).long_share, 0.0);
-  EXPECT_EQ(contact_layer(pairs, 2, 2, 1000.0).long_share, 1.0);
-  EXPECT_THROW(contact_layer(pairs, 0, 2, 1000.0), std::invalid_argument);
-  EXPECT_THROW(contact_layer(pairs, 1, 3, 1000.0), std::invalid_argument);
-  EXPECT_THROW(contact_layer(pairs, 1, 2, 0.0), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(both.long_share, 1000.0 / 1010.5);
+  EXPECT_EQ(contact_layer(pairs, 1, 1).long_share, 0.0);
+  EXPECT_EQ(contact_layer(pairs, 2, 2).long_share, 1.0);
+  EXPECT_THROW(contact_layer(pairs, 0, 2), std::invalid_argument);
+  EXPECT_THROW(contact_layer(pairs, 1, 3), std::invalid_argument);
+  // A run stored before the long-contact time was kept: no share.
+  pairs[1].long_fraction = std::nan("");
+  EXPECT_TRUE(std::isnan(contact_layer(pairs, 1, 2).long_share));
 }
 
 // Nine pairs in three layers: 1-3, 4-6, 7-9, each pair once; more layers than pairs: one each.
 TEST(ContactLayers, LayersCoverEveryPairOnce) {
   std::vector<PairContacts> pairs(10);
-  const auto three = contact_layers(pairs, 3, 1.0);
+  const auto three = contact_layers(pairs, 3);
   ASSERT_EQ(three.size(), 3u);
   EXPECT_EQ(three[0].first_pair, 1);
   EXPECT_EQ(three[0].last_pair, 3);
   EXPECT_EQ(three[1].first_pair, 4);
   EXPECT_EQ(three[2].last_pair, 9);
-  const auto many = contact_layers(pairs, 20, 1.0);
+  const auto many = contact_layers(pairs, 20);
   ASSERT_EQ(many.size(), 9u);
   for (int l = 0; l < 9; ++l) EXPECT_EQ(many[static_cast<std::size_t>(l)].first_pair, l + 1);
 }
@@ -69,16 +68,15 @@ TEST(ContactLayers, ARestingColumnIsHeldAndAFluidOneCollides) {
     spec.params = ChainParameters{.N = 10, .k = 1e4, .e = e, .kT0 = kT0};
     spec.T = 50.0;
     spec.transient = 20.0;
-    const RunResult r = run_driven_column(spec);
-    return std::make_pair(r, spec.T / r.law.tau_c);  // and the window in units of tau_c
+    return run_driven_column(spec);
   };
-  const auto [rest, rest_window] = column(0.1, 1e-4);
-  const auto rest_layers = contact_layers(rest.contacts, 10, rest_window);
+  const RunResult rest = column(0.1, 1e-4);
+  const auto rest_layers = contact_layers(rest.contacts, 10);
   EXPECT_GT(rest_layers.front().contact_fraction, 0.99);
   EXPECT_GT(rest_layers.front().long_share, 0.99);
 
-  const auto [fluid, fluid_window] = column(0.95, 1.0);
-  const analysis::ContactLayer whole = contact_layer(fluid.contacts, 1, 9, fluid_window);
+  const RunResult fluid = column(0.95, 1.0);
+  const analysis::ContactLayer whole = contact_layer(fluid.contacts, 1, 9);
   EXPECT_GT(whole.contacts, 500u);
   EXPECT_NEAR(whole.mean_duration, 1.0, 0.1);
   EXPECT_LT(whole.long_share, 0.1);

@@ -33,6 +33,7 @@ ContactDurations::ContactDurations(int N, double tau_c, double t_begin, double t
       sum_(static_cast<std::size_t>(N), 0.0),
       longest_(static_cast<std::size_t>(N), 0.0),
       in_window_(static_cast<std::size_t>(N), 0.0),
+      long_in_window_(static_cast<std::size_t>(N), 0.0),
       hist_(static_cast<std::size_t>(N) * kBins, 0) {}
 
 void ContactDurations::on_event(const Event& ev) {
@@ -59,7 +60,9 @@ void ContactDurations::on_event(const Event& ev) {
   const double duration = (ev.t - b) + (ev.t_low - begin_lo_[s]);
   begin_hi_[s] = std::numeric_limits<double>::quiet_NaN();
   if (ev.t < t_begin_) return;
-  in_window_[s] += ev.t - std::max(b, t_begin_);
+  const double part = ev.t - std::max(b, t_begin_);
+  in_window_[s] += part;
+  if (duration * inverse_tau_c_ > kLongContact) long_in_window_[s] += part;
   finish(slot, duration, b < t_begin_);
 }
 
@@ -82,13 +85,16 @@ std::vector<PairContacts> ContactDurations::pairs() const {
     p.began_before = before_[s];
     p.mean = count_[s] ? sum_[s] / static_cast<double>(count_[s]) : 0.0;
     p.longest = longest_[s];
-    double in_window = in_window_[s];
+    double in_window = in_window_[s], long_in_window = long_in_window_[s];
     if (!std::isnan(begin_hi_[s]) && begin_hi_[s] < t_end_) {  // open at the window's end
       p.open_at_end = 1;
-      in_window += t_end_ - std::max(begin_hi_[s], t_begin_);
-      p.longest = std::max(p.longest, (t_end_ - begin_hi_[s]) / tau_c_);
+      const double part = t_end_ - std::max(begin_hi_[s], t_begin_), age = (t_end_ - begin_hi_[s]) / tau_c_;
+      in_window += part;
+      if (age > kLongContact) long_in_window += part;
+      p.longest = std::max(p.longest, age);
     }
     p.contact_fraction = T > 0 ? in_window / T : 0.0;
+    p.long_fraction = T > 0 ? long_in_window / T : 0.0;
     const auto h_begin = hist_.begin() + static_cast<std::ptrdiff_t>(s * kBins), h_end = h_begin + kBins;
     const auto first = std::find_if(h_begin, h_end, [](std::uint64_t c) { return c > 0; });
     if (first == h_end) continue;

@@ -20,6 +20,9 @@ struct PairContacts {
   double mean = 0.0;                 // mean duration / tau_c of the contacts that ended in the window
   double longest = 0.0;              // the longest of them / tau_c (an open one: its age at the end, if longer)
   double contact_fraction = 0.0;     // time in contact within the window / T
+  // Of that, the time in contacts longer than ContactDurations::kLongContact tau_c (an open one:
+  // once its age exceeds it) / T. NaN in runs stored before it was kept.
+  double long_fraction = 0.0;
   int first_bin = 0;                 // histogram[j] counts durations in bin first_bin + j
   std::vector<std::uint64_t> histogram;
 };
@@ -32,6 +35,9 @@ class ContactDurations final : public EventSink {
   static constexpr int kBinsPerOctave = 4;
   static constexpr int kLog2Min = -8;  // 0.004 tau_c
   static constexpr int kBins = 4 * 72;  // up to 2^64 = 1.8e19 tau_c
+  // A binary collision of the spring-dashpot law lasts exactly tau_c (a grazing one less); a contact
+  // longer than twice that held three or more particles together.
+  static constexpr double kLongContact = 2.0;
   // Lower edge of bin b in units of tau_c: 2^(kLog2Min + b / kBinsPerOctave).
   static double bin_lower_edge(int b);
   // The bin of a duration x (in units of tau_c).
@@ -50,7 +56,7 @@ class ContactDurations final : public EventSink {
   double tau_c_, inverse_tau_c_, t_begin_, t_end_;
   std::vector<double> begin_hi_, begin_lo_;  // open contact's begin time (t + t_low), NaN when closed
   std::vector<std::uint64_t> count_, before_;
-  std::vector<double> sum_, longest_, in_window_;
+  std::vector<double> sum_, longest_, in_window_, long_in_window_;
   std::vector<std::uint64_t> hist_;  // pair-major: hist_[slot * kBins + bin]
 };
 

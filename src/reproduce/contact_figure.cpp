@@ -68,6 +68,7 @@ ReplicaValue over_replicas(const std::vector<double>& x) {
 
 // "0.0130 ± 0.0021" (the error to two significant digits), "0.013 (one run)" without an error.
 std::string value_text(const ReplicaValue& v) {
+  if (!std::isfinite(v.value)) return "-";  // (a long-contact share of runs stored before it was kept)
   if (std::isfinite(v.error) && v.error > 0) return format_with_error(v.value, v.error);
   if (std::isfinite(v.error)) return fmt::format("{:.4g} ± 0", v.value);  // the replicas agree exactly
   return fmt::format("{:.4g} (one run)", v.value);
@@ -125,13 +126,13 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
       "Command: `{}`. Contact durations of the driven column (k_B T0 = 1, exact engine, T = {}, transient T/10, {} replicas per "
       "point), N = {}, at c = N(1 − e) = 2 and 5 and at e = 0.3, k = {}. Per pair (i, i+1): the fraction of the window in "
       "contact and the mean contact duration in units of τ_c (a binary collision lasts τ_c, Eq. tauc); per tenth of the column: "
-      "the share of its time in contact spent in contacts longer than {:g} τ_c (three or more particles held together): one "
-      "minus the time of the shorter contacts (duration histograms in quarter octaves, each bin at its geometric centre) over the "
-      "time in contact (contacts still open at the window's end included). Values are the mean of the replicas, errors half "
+      "the share of its time in contact spent in contacts longer than {:g} τ_c (three or more particles held together; contacts "
+      "still open at the window's end included). Values are the mean of the replicas, errors half "
       "their difference (\"one run\" where the second is not stored yet). {} of {} runs stored, {} stationary by the run's own verdict; {:.2f} CPU-hours. Figure: `contacts.png` "
-      "(and .pdf): per choice of e, at the largest k, (top) fraction in contact and (middle) mean duration against the pair's "
+      "(and .pdf): per choice of e, at the smallest k (where contacts last longest), (top) fraction in contact and (second row) "
+      "mean duration against the pair's "
       "height i/N, one curve per N; (third row) the long-contact share of the bottom tenth against k; (bottom) the distribution of "
-      "the bottom tenth's contact durations at the largest k (contacts per octave of duration, normalised to 1).\n",
+      "the bottom tenth's contact durations at the smallest k (contacts per octave of duration, normalised to 1).\n",
       reproduce_command_line(o), contact_T(o), kReplicas, blocks.front().N + " … " + blocks.back().N, contact_k(o),
       analysis::kLongContact, stored, points.size(), stationary, cpu / 3600.0);
 
@@ -150,9 +151,8 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
         std::vector<std::vector<analysis::ContactLayer>> tenths;
         std::vector<analysis::ContactLayer> whole;
         for (const RunResult& r : cell.runs) {
-          const double window = r.spec.T / r.law.tau_c;
-          tenths.push_back(analysis::contact_layers(r.contacts, kLayers, window));
-          whole.push_back(analysis::contact_layer(r.contacts, 1, static_cast<int>(r.contacts.size()) - 1, window));
+          tenths.push_back(analysis::contact_layers(r.contacts, kLayers));
+          whole.push_back(analysis::contact_layer(r.contacts, 1, static_cast<int>(r.contacts.size()) - 1));
         }
         const auto over = [&](const std::vector<analysis::ContactLayer>& ls, auto field) {
           std::vector<double> x;

@@ -78,10 +78,11 @@ json run_result_to_json(const RunResult& r) {
       const PairContacts& c = r.contacts[i];
       pairs.push_back({{"pair", i}, {"contacts", c.contacts}, {"began_before", c.began_before}, {"open_at_end", c.open_at_end},
                        {"mean", c.mean}, {"longest", c.longest}, {"contact_fraction", c.contact_fraction},
+                       {"long_fraction", c.long_fraction},
                        {"first_bin", c.first_bin}, {"histogram", c.histogram}});
     }
     j["contacts"] = {{"unit", "tau_c"}, {"log2_min", ContactDurations::kLog2Min}, {"bins_per_octave", ContactDurations::kBinsPerOctave},
-                     {"pairs", pairs}};
+                     {"long_contact", ContactDurations::kLongContact}, {"pairs", pairs}};
   }
   j["warnings"] = run_warnings(r);  // the verdicts above as the sentences the command line prints
   // A value of the wrong sign fails the run (run_driven_column), so a result's audit found none.
@@ -159,11 +160,15 @@ RunResult run_result_from_json(const json& j) {
     r.n_coll_halves.z = r.height_halves.z = nan;
   }
   if (j.contains("contacts"))  // runs stored before contact durations were kept have none
-    for (const json& q : j.at("contacts").at("pairs"))
+    for (const json& q : j.at("contacts").at("pairs")) {
+      // (long_fraction: absent in runs stored before it was kept)
+      const double long_fraction = q.contains("long_fraction") && q.at("long_fraction").is_number() ? q.at("long_fraction").get<double>()
+                                                                                                    : std::numeric_limits<double>::quiet_NaN();
       r.contacts.push_back(PairContacts{q.at("contacts").get<std::uint64_t>(), q.at("began_before").get<std::uint64_t>(),
                                         q.at("open_at_end").get<std::uint64_t>(), q.at("mean").get<double>(),
-                                        q.at("longest").get<double>(), q.at("contact_fraction").get<double>(),
+                                        q.at("longest").get<double>(), q.at("contact_fraction").get<double>(), long_fraction,
                                         q.at("first_bin").get<int>(), q.at("histogram").get<std::vector<std::uint64_t>>()});
+    }
   const json& c = j.at("cost");
   r.steps = c.at("steps").get<std::uint64_t>();
   r.events = c.at("events").get<std::uint64_t>();
