@@ -6,13 +6,13 @@
 #   bash scripts/slurm-reproduce-array.sh --array=7       resubmit shard 7 (one that exited 75, its
 #                                                         walltime spent, or one killed by a node
 #                                                         failure): it resumes where it stopped
-#   ./build/granchain merge --into data/paper/paper.db shards/large-*.db
+#   ./build/granchain merge --into data/paper/paper.db shards/fig6-large-*.db
 #   ./build/granchain reproduce --figure fig6 --preset large --db data/paper/paper.db --out OUT
 #                                                         (and fig7, fig9: they share the runs; nothing is run again)
 #
 # FIGURE and PRESET (environment, default fig6 and large) choose the runs: task i runs share i/SHARDS
 # of each sweep that `granchain reproduce --figure FIGURE --preset PRESET --print-sweeps` lists, in
-# that order, into shards/PRESET-i.db, each sweep with the part of the job's walltime still left
+# that order, into shards/FIGURE-PRESET-i.db, each sweep with the part of the job's walltime still left
 # (--time-limit: a point starts only if it is predicted to end within it). A sweep that leaves points
 # does not stop the task: later sweeps may hold points that still fit. The task exits with the first
 # failure's code (3: a run turned unphysical, 4: the store failed), else 75 when any sweep left
@@ -59,7 +59,7 @@ while read -r line; do
   fi
   read -ra words <<< "${line#granchain }"
   rc=0
-  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/$PRESET-$i.db" \
+  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/$FIGURE-$PRESET-$i.db" \
       --time-limit "${remaining}s" --progress -q || rc=$?
   if [ "$rc" -eq 75 ]; then
     left=1

@@ -50,7 +50,7 @@ grep -q -- "--array=7 .*slurm-reproduce-array.sh" sbatch.args || fail "sbatch go
 [ "$(task "0 0")" -eq 0 ] || fail "task 7 did not succeed"
 grep -q -- "--figure fig6 --preset large --print-sweeps" reproduce.args || fail "reproduce got: $(cat reproduce.args)"
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "task 7 ran $(wc -l < sweeps.args) sweeps, not 2"
-head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/large-7.db --time-limit [0-9]*s --progress -q$" ||
+head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --time-limit [0-9]*s --progress -q$" ||
   fail "first sweep: $(head -1 sweeps.args)"
 tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64" || fail "second sweep: $(tail -1 sweeps.args)"
 limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
