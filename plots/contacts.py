@@ -69,7 +69,9 @@ def main(argv):
         a_f.set_ylim(0, 1.02)
         a_m.set_yscale("log")
         a_m.yaxis.set_major_formatter(FormatStrFormatter("%g"))
-        a_m.yaxis.set_minor_formatter(NullFormatter())
+        lo, hi = a_m.get_ylim()
+        # Under a decade the major ticks may show a single label: the minor ones are labelled then.
+        a_m.yaxis.set_minor_formatter(FormatStrFormatter("%g") if hi / lo < 10 else NullFormatter())
         a_m.axhline(1.0, color="0.6", lw=0.6, ls=":")
         a_s.set_xscale("log")
         a_s.set_ylim(-0.02, 1.02)

@@ -12,8 +12,10 @@ namespace granchain {
 //    ln(1 + N (1 - e)) (the paper's scaling variable N (1 - e): the uncollapsing regime is
 //    x < ln(1 + A), A ~ 2.6), log10 k and ln k_B T0, fitted by bench/fit_cost_model.py on the CPU
 //    time of 676 whole runs of the paper's grids. Inside the calibrated box (3 <= N <= 150,
-//    1e5 <= k <= 1e10) it predicts 693 of the 700 held-out runs within a factor of 2. Outside the
-//    box N and k are held at its edge and the cost scaled by N / N_edge: a rough guess. Above a
+//    1e5 <= k <= 1e10) it predicts 693 of the 700 held-out runs within a factor of 2. Beyond
+//    N = 150 the rate of N = 150 at the column's own N (1 - e) is scaled by (N / 150)^2.2, fitted by
+//    bench/fit_large_cost.py on runs of N = 200 ... 500 (19 of 27 within a factor of 2); beyond
+//    k = 1e10 the rate of k = 1e10. Above a
 //    vibrating plate: times a factor of the drive, k, N and N (1 - e) fitted by
 //    bench/fit_plate_cost.py (about 0.5-1.4 at k = 1e5, 1-5 at 1e8 and 1.3-17 at 1e10 for N = 25).
 //  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
