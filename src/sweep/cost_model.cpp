@@ -20,7 +20,7 @@ constexpr double kExactCoefficients[13] = {-14.3216,  1.29095,  0.111097,   -0.4
                                            0.179825,  0.029,    -0.476674};
 constexpr double kCalibratedNMin = 3, kCalibratedNMax = 150, kDecadesAbove1e5 = 5;
 const double kXMax = std::log1p(kCalibratedNMax * 0.9);  // the largest c of the box: N = 150 at e = 0.1
-// `/usr/bin/python3 bench/fit_large_cost.py calib.db --run` (2026-11-27): 27 short runs of N = 200,
+// `/usr/bin/python3 bench/fit_large_cost.py data/columns/cost_calibration.db` (2026-11-27): 27 short runs of N = 200,
 // 300, 500 (c = 2.6, 5 and e = 0.3, k = 1e5, 1e7, 1e9) against the box's rate at N = 150 and the
 // same c: the cost grows like N^(1 + 1.21) beyond it (1.38, 1.15, 1.09 for the three choices of e).
 constexpr double kBeyondNPower = 2.2;
