@@ -32,17 +32,11 @@ GRANCHAIN=${GRANCHAIN:-./build/granchain}
 FIGURE=${FIGURE:-fig6}
 PRESET=${PRESET:-large}
 
-if [ -z "${SLURM_JOB_ID:-}" ]; then
-  mkdir -p shards  # Slurm opens the --output log before the job starts: the folder must exist
-  exec sbatch "$@" "$0"
-fi
-
-i=${SLURM_ARRAY_TASK_ID:?not a job array task (SLURM_ARRAY_TASK_ID is unset)}
-if ! [[ "$i" =~ ^[0-9]+$ ]] || [ "$i" -lt 1 ] || [ "$i" -gt "$SHARDS" ]; then
-  echo "slurm-reproduce-array: array task $i is outside 1..$SHARDS (submit with --array=1-$SHARDS)" >&2
-  exit 2
-fi
-mkdir -p shards
+# Inside a job Slurm runs a copy of this script from its spool: the helper is found from the
+# submission folder, the repository root.
+# shellcheck source=scripts/slurm-array-task.sh
+source "${SLURM_SUBMIT_DIR:-$(dirname "$0")/..}/scripts/slurm-array-task.sh"
+i=$TASK
 deadline=$((SECONDS + WALLTIME_S))
 sweeps=$("$GRANCHAIN" reproduce --figure "$FIGURE" --preset "$PRESET" --print-sweeps | grep '^granchain sweep ' || true)
 if [ -z "$sweeps" ]; then

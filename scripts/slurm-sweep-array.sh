@@ -19,17 +19,11 @@ set -euo pipefail
 SHARDS=16
 GRANCHAIN=${GRANCHAIN:-./build/granchain}
 
-if [ -z "${SLURM_JOB_ID:-}" ]; then
-  mkdir -p shards  # Slurm opens the --output log before the job starts: the folder must exist
-  exec sbatch "$@" "$0"
-fi
-
-i=${SLURM_ARRAY_TASK_ID:?not a job array task (SLURM_ARRAY_TASK_ID is unset)}
-if ! [[ "$i" =~ ^[0-9]+$ ]] || [ "$i" -lt 1 ] || [ "$i" -gt "$SHARDS" ]; then
-  echo "slurm-sweep-array: array task $i is outside 1..$SHARDS (submit with --array=1-$SHARDS)" >&2
-  exit 2
-fi
-mkdir -p shards
+# Inside a job Slurm runs a copy of this script from its spool: the helper is found from the
+# submission folder, the repository root.
+# shellcheck source=scripts/slurm-array-task.sh
+source "${SLURM_SUBMIT_DIR:-$(dirname "$0")/..}/scripts/slurm-array-task.sh"
+i=$TASK
 # The paper's Fig. 4 grid for N = 25: e from 0.80 to 0.998, six values of k, T = 1e4. The time
 # limit, half an hour inside the job's --time, starts only points predicted to end before the job is
 # killed; a shard with points left exits 75 and is resubmitted with --array=i.

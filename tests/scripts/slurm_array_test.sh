@@ -4,22 +4,13 @@
 # the task was resubmitted alone (SLURM_ARRAY_TASK_COUNT=1); a task outside 1..16 is refused; and
 # the 16 shards' dry runs list every point of the grid exactly once.
 set -euo pipefail
-repo=$(cd "$(dirname "$0")/../.." && pwd)
-binary=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-mkdir bin
-cat > bin/sbatch <<'STUB'
-#!/usr/bin/env bash
-echo "sbatch $*" > sbatch.args
-STUB
+# shellcheck source=tests/scripts/fake_slurm.sh
+source "$(dirname "$0")/fake_slurm.sh"
 cat > bin/granchain <<'STUB'
 #!/usr/bin/env bash
 echo "$*" > granchain.args
 STUB
-chmod +x bin/sbatch bin/granchain
-fail() { echo "FAIL: $*" >&2; exit 1; }
+chmod +x bin/granchain
 
 # Submission: shards/ exists before sbatch runs; the extra arguments reach sbatch.
 env -u SLURM_JOB_ID PATH="$work/bin:$PATH" bash "$repo/scripts/slurm-sweep-array.sh" --array=7

@@ -6,19 +6,9 @@
 # binary: every sweep of the large preset's across-N figures, as the script runs it, is accepted
 # (a dry run of shard 1/64), and the 64 shards of one of them list each of its points exactly once.
 set -euo pipefail
-repo=$(cd "$(dirname "$0")/../.." && pwd)
-binary=$1
+# shellcheck source=tests/scripts/fake_slurm.sh
+source "$(dirname "$0")/fake_slurm.sh"
 script="$repo/scripts/slurm-reproduce-array.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-mkdir bin
-cat > bin/sbatch <<'STUB'
-#!/usr/bin/env bash
-echo "sbatch $*" > sbatch.args
-STUB
-# The fake granchain: --print-sweeps lists two sweeps; a sweep records its arguments and exits with
-# the code FAKE_CODES gives it in turn (default 0).
 cat > bin/granchain <<'STUB'
 #!/usr/bin/env bash
 if [ "$1" = reproduce ]; then
@@ -32,8 +22,7 @@ n=$(wc -l < sweeps.args)
 codes=(${FAKE_CODES:-0 0})
 exit "${codes[$((n - 1))]}"
 STUB
-chmod +x bin/sbatch bin/granchain
-fail() { echo "FAIL: $*" >&2; exit 1; }
+chmod +x bin/granchain
 task() {  # task 7 of the array with the fake binary; prints its exit code
   rm -f sweeps.args
   local rc=0
@@ -60,6 +49,13 @@ limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the sweep after one that left points did not run"
 # A failure's code comes before 75.
 [ "$(task "75 3")" -eq 3 ] || fail "an unphysical run's exit 3 was hidden"
+# Inside a real job Slurm runs a copy of the script from its spool folder: the helper it sources is
+# found from the submission folder.
+mkdir -p spool && cp "$script" spool/slurm_script
+rm -f sweeps.args
+SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 SLURM_SUBMIT_DIR="$repo" GRANCHAIN="$work/bin/granchain" bash spool/slurm_script ||
+  fail "the spooled copy failed"
+[ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the spooled copy ran $(wc -l < sweeps.args) sweeps"
 # A task outside the array's range.
 if SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=65 GRANCHAIN="$work/bin/granchain" bash "$script" 2> err.txt; then
   fail "task 65 was accepted"
