@@ -9,12 +9,13 @@ and T = 60 (a short window: the rate of the settled column, not its statistics).
     /usr/bin/python3 bench/fit_large_cost.py STORE [--granchain build/granchain] [--run]
 
 --run first runs the grid into STORE (`granchain sweep`, one thread; about an hour on one core).
-Then for every run of the grid in STORE: the model's prediction (`granchain sweep --dry-run`, matched
-by seed) against the run's CPU time, and the least-squares fit of
+Then for every run of the grid in STORE: the model's prediction (`granchain sweep --dry-run` of the
+binary given, matched by seed) against the run's CPU time, and the least-squares fit of
     ln(measured / predicted) = c + p ln(N / 150)
-(the model holds N at 150 beyond the box and scales the cost by N / 150: p is the missing power of
-N), per choice of e and over all runs, with the residuals' rms and the within-2x count before and
-after the correction.
+per choice of e and over all runs, with the residuals' rms and the within-2x count before and after
+it. The model takes the rate of N = 150 at the column's own N(1 - e) and scales it by
+(N / 150)^kBeyondNPower: p is the power of N it misses (fitted at kBeyondNPower = 1, p = 1.21 gave
+kBeyondNPower = 2.2; with today's model p is the residual, about 0).
 """
 import argparse
 import math

@@ -14,20 +14,25 @@
 # of each sweep that `granchain reproduce --figure FIGURE --preset PRESET --print-sweeps` lists, in
 # that order, into shards/FIGURE-PRESET-i.db, each sweep with the part of the job's walltime still left
 # (--time-limit: a point starts only if it is predicted to end within it). A sweep that leaves points
-# does not stop the task: later sweeps may hold points that still fit. The task exits with the first
-# failure's code (3: a run turned unphysical, 4: the store failed), else 75 when any sweep left
-# points (resubmit it), else 0.
+# does not stop the task: later sweeps may hold points that still fit. A sweep whose longest point
+# (its cost-model estimate with the sweep's margin of 1.25, from a dry run of the task's share)
+# does not fit in what is left of the walltime waits for the resubmitted task, which starts with all
+# of it; one that does not fit in the whole walltime is an error (exit 2: give the job a longer
+# --time and WALLTIME_S). The task exits with the first failure's code (2, 3: a run turned
+# unphysical, 4: the store failed), else 75 when any sweep left points (resubmit it), else 0.
 # Run from the repository root. Outside a job the script submits itself with sbatch (extra arguments
 # go to sbatch); the number of shards is fixed here, not read from the array, so that a resubmitted
 # single task still runs share i of SHARDS.
 #SBATCH --job-name=granchain-reproduce
 #SBATCH --array=1-64
 #SBATCH --cpus-per-task=8
-#SBATCH --time=24:00:00
-#SBATCH --output=shards/reproduce-%a.log
+#SBATCH --time=2-00:00:00
+#SBATCH --output=shards/reproduce-%A-%a.log
 set -euo pipefail
 SHARDS=64
-WALLTIME_S=$((24 * 3600 - 1800))  # the job's --time less half an hour for the last point's margin and the store
+# The job's --time less half an hour for the store and the log (change both together). Two days:
+# the large preset's longest points (N = 1000, k = 1e10) are predicted at 23.5 hours each.
+WALLTIME_S=$((48 * 3600 - 1800))
 GRANCHAIN=${GRANCHAIN:-./build/granchain}
 FIGURE=${FIGURE:-fig6}
 PRESET=${PRESET:-large}
@@ -52,8 +57,22 @@ while read -r line; do
     break
   fi
   read -ra words <<< "${line#granchain }"
+  store="shards/$FIGURE-$PRESET-$i.db"
+  # The longest point of this share (stored or not: the sweep's own check counts them all), with
+  # the sweep's margin: a sweep refuses a time limit that it cannot hold.
+  need=$("$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" --dry-run |
+    awk '/driven_column/ { v = $2 + 0; if (v > m) m = v } END { printf "%d", 1.25 * m + 1 }')
+  if [ "$need" -gt "$WALLTIME_S" ]; then
+    echo "slurm-reproduce-array: ${line}: its longest point needs ${need} s, more than the job's ${WALLTIME_S} s" >&2
+    [ "$status" -eq 0 ] && status=2
+    continue
+  fi
+  if [ "$need" -gt "$remaining" ]; then
+    left=1  # the resubmitted task, with the whole walltime, runs it
+    continue
+  fi
   rc=0
-  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "shards/$FIGURE-$PRESET-$i.db" \
+  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "$store" \
       --time-limit "${remaining}s" --progress -q || rc=$?
   if [ "$rc" -eq 75 ]; then
     left=1

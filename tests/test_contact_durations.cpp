@@ -74,6 +74,29 @@ TEST(ContactDurations, ContactsStraddlingTheWindowAreCountedOnce) {
   EXPECT_TRUE(pairs[2].histogram.empty());
 }
 
+// The time in contacts longer than 2 tau_c (tau_c = 0.5, window 1 .. 10): a long contact begun
+// before the window counts its part inside; a short one none; a long one open at the end its part
+// inside, a young one open at the end none; a plate's contact likewise.
+TEST(ContactDurations, TheTimeInLongContactsIsTheirPartOfTheWindow) {
+  ContactDurations c(3, 0.5, 1.0, 10.0);
+  const auto ev = [](EventKind kind, double t, int i) { return Event{kind, t, i, 1.0, 0.0}; };
+  c.on_event(ev(EventKind::ContactBegin, 0.0, 0));  // pair 1: 0 .. 2, 4 tau_c, 1.0 inside
+  c.on_event(ev(EventKind::ContactEnd, 2.0, 0));
+  c.on_event(ev(EventKind::ContactBegin, 3.0, 0));  // pair 1: 3 .. 3.4, 0.8 tau_c
+  c.on_event(ev(EventKind::ContactEnd, 3.4, 0));
+  c.on_event(ev(EventKind::ContactBegin, 5.0, 1));  // pair 2: 5 .. 6.5, 3 tau_c
+  c.on_event(ev(EventKind::ContactEnd, 6.5, 1));
+  c.on_event(ev(EventKind::ContactBegin, 9.8, 1));  // pair 2: open at the end, aged 0.4 tau_c
+  c.on_event(ev(EventKind::FloorContact, 8.0, 0));  // the plate: open at the end, aged 4 tau_c
+  const auto pairs = c.pairs();
+  EXPECT_DOUBLE_EQ(pairs[1].contact_fraction, 1.4 / 9.0);
+  EXPECT_DOUBLE_EQ(pairs[1].long_fraction, 1.0 / 9.0);
+  EXPECT_DOUBLE_EQ(pairs[2].contact_fraction, 1.7 / 9.0);
+  EXPECT_DOUBLE_EQ(pairs[2].long_fraction, 1.5 / 9.0);
+  EXPECT_DOUBLE_EQ(pairs[0].contact_fraction, 2.0 / 9.0);
+  EXPECT_DOUBLE_EQ(pairs[0].long_fraction, 2.0 / 9.0);
+}
+
 // A column of N = 10 at e = 0.1 on a cold floor (k_B T0 = 1e-4, far below the column's weight m g d)
 // rests: its bottom pair stays in contact through the window, while a contact in the paper's fluid
 // column (k_B T0 = 1, e = 0.95) lasts about tau_c. Hard spheres have no durations.
@@ -105,6 +128,12 @@ TEST(ContactDurations, ARestingColumnKeepsItsBottomContactClosed) {
     EXPECT_DOUBLE_EQ(back.contacts[i].contact_fraction, fluid.contacts[i].contact_fraction);
     EXPECT_DOUBLE_EQ(back.contacts[i].long_fraction, fluid.contacts[i].long_fraction);
   }
+  // A run stored before the long-contact time was kept reads back without it (NaN), the rest intact.
+  nlohmann::json old = run_result_to_json(fluid);
+  for (auto& q : old["contacts"]["pairs"]) q.erase("long_fraction");
+  const RunResult before = run_result_from_json(old);
+  EXPECT_TRUE(std::isnan(before.contacts[1].long_fraction));
+  EXPECT_DOUBLE_EQ(before.contacts[1].contact_fraction, fluid.contacts[1].contact_fraction);
   spec.engine.kind = EngineKind::Hard;
   EXPECT_TRUE(run_driven_column(spec).contacts.empty());
 }

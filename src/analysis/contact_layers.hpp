@@ -3,8 +3,8 @@
 // first_pair .. last_pair (pair i joins particles i and i + 1; pair 0, a plate's contact, is not a
 // layer's). A binary collision of the spring-dashpot law lasts tau_c (Eq. tauc), shorter ones only
 // when grazing; a contact longer than ContactDurations::kLongContact tau_c held three or more
-// particles together, the "long-lived contacts" the paper's Summary expects in the condensed layer
-// near the floor.
+// particles together (or was stretched by the floor's kick, for the bottom pair), the "long-lived
+// contacts" the paper's Summary expects in the condensed layer near the floor.
 #include <cstdint>
 #include <vector>
 

@@ -36,7 +36,8 @@ class ContactDurations final : public EventSink {
   static constexpr int kLog2Min = -8;  // 0.004 tau_c
   static constexpr int kBins = 4 * 72;  // up to 2^64 = 1.8e19 tau_c
   // A binary collision of the spring-dashpot law lasts exactly tau_c (a grazing one less); a contact
-  // longer than twice that held three or more particles together.
+  // longer than twice that held three or more particles together (or, for the bottom pair, was
+  // stretched by a kick of the floor).
   static constexpr double kLongContact = 2.0;
   // Lower edge of bin b in units of tau_c: 2^(kLog2Min + b / kBinsPerOctave).
   static double bin_lower_edge(int b);

@@ -32,20 +32,22 @@ std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<
 
 // The large preset: the paper's columns and N = 200 ... 1000 on the same grids, with four replicas
 // on the power-law side of N >= 100 and at the condensed points (c = N (1 - e) >= 2.6, where the
-// paper puts e_c1) of N >= 200; replica 0 of each is the single run of the paper's grid.
+// paper puts e_c1) of N >= 200; replica 0 of each is the single run of the paper's grid. Each point
+// is in one block only (the single-run block of N >= 100 leaves out the e the replicas' block has),
+// so that the sweeps `--print-sweeps` lists, each split into shards of its own, never share a point
+// (two job-array tasks would otherwise compute it twice, into different stores).
 std::vector<GridBlock> large_blocks(const ReproduceFlags& o) {
-  std::vector<int> Ns = kAcrossN;
+  std::vector<GridBlock> blocks = across_blocks(o, {kAcrossN.begin(), kAcrossN.end() - 2}, "1");  // N < 100
+  std::vector<double> condensed, uncondensed;
+  for (double c : critical_region_c()) (c >= 2.6 - 1e-9 ? condensed : uncondensed).push_back(c);
+  std::vector<int> Ns = {kAcrossN.end() - 2, kAcrossN.end()};  // 100, 150
   Ns.insert(Ns.end(), kLargeN.begin(), kLargeN.end());
-  std::vector<GridBlock> blocks = across_blocks(o, Ns, "1");
-  std::vector<double> condensed;
-  for (double c : critical_region_c())
-    if (c >= 2.6 - 1e-9) condensed.push_back(c);
   for (int N : Ns) {
-    if (N < 100) continue;
-    std::string e = kPowerLawE;
-    if (N >= 200) e = e_list_at_n_one_minus_e(N, condensed) + "," + e;
-    GridBlock b{std::to_string(N), e, preset_k(o), preset_T(o, N), "1", kLargeReplicas};
-    blocks.push_back(b);
+    const bool large = N >= 200;
+    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, large ? uncondensed : critical_region_c()), preset_k(o),
+                      preset_T(o, N), "1"});
+    const std::string e = large ? e_list_at_n_one_minus_e(N, condensed) + "," + kPowerLawE : kPowerLawE;
+    blocks.push_back({std::to_string(N), e, preset_k(o), preset_T(o, N), "1", kLargeReplicas});
   }
   return blocks;
 }

@@ -17,6 +17,10 @@ if [ "$1" = reproduce ]; then
     "# 264 points" "granchain sweep --N 300 --e 0.99,0.1 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4" "# 360 distinct points"
   exit 0
 fi
+if [[ " $* " == *" --dry-run "* ]]; then  # one point of this share, at FAKE_COST seconds
+  echo "     1  ${FAKE_COST:-100}  0  1  driven_column engine=exact N=200"
+  exit 0
+fi
 echo "$*" >> sweeps.args
 n=$(wc -l < sweeps.args)
 codes=(${FAKE_CODES:-0 0})
@@ -43,7 +47,14 @@ head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 
   fail "first sweep: $(head -1 sweeps.args)"
 tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64" || fail "second sweep: $(tail -1 sweeps.args)"
 limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
-[ "$limit" -gt 84000 ] && [ "$limit" -le 84600 ] || fail "time limit $limit s, not the walltime less half an hour"
+[ "$limit" -gt 170000 ] && [ "$limit" -le 171000 ] || fail "time limit $limit s, not the two days' walltime less half an hour"
+# A share whose longest point cannot fit in the whole walltime is refused, and nothing of it runs.
+rm -f sweeps.args
+rc=0
+SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 GRANCHAIN="$work/bin/granchain" FAKE_COST=140000 bash "$script" 2> err.txt || rc=$?
+[ "$rc" -eq 2 ] || fail "a share longer than the walltime exited $rc, not 2"
+[ ! -e sweeps.args ] || fail "a share longer than the walltime ran: $(cat sweeps.args)"
+grep -q "its longest point needs 175001 s, more than the job's 171000 s" err.txt || fail "refusal: $(cat err.txt)"
 # A sweep that left points: the next one still runs, and the task asks to be resubmitted.
 [ "$(task "75 0")" -eq 75 ] || fail "a sweep that left points did not make the task exit 75"
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the sweep after one that left points did not run"
@@ -62,14 +73,24 @@ if SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=65 GRANCHAIN="$work/bin/granchain" bash "$
 fi
 grep -q "outside 1..64" err.txt || fail "task 65: $(cat err.txt)"
 
-# The real binary: every sweep of the large preset, with the flags the script adds, is accepted.
-"$binary" reproduce --figure fig6 --preset large --print-sweeps | grep '^granchain sweep ' > large.txt
+# The real binary: every sweep of the large preset, with the flags the script adds, is accepted, its
+# longest point fits in the job's walltime with the sweep's margin, and no two sweeps share a point
+# (each is split into shards of its own: a shared point would be computed twice).
+"$binary" reproduce --figure fig6 --preset large --print-sweeps > print.txt
+grep '^granchain sweep ' print.txt > large.txt
 [ "$(wc -l < large.txt)" -ge 10 ] || fail "the large preset lists $(wc -l < large.txt) sweeps"
+: > keys.txt
 while read -r line; do
   read -ra words <<< "${line#granchain }"
-  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit 84600s --dry-run > /dev/null ||
+  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit 171000s --dry-run > /dev/null ||
     fail "refused: $line"
+  "$binary" "${words[@]}" --db "$work/none.db" --dry-run > dry.txt
+  awk '/driven_column/ { v = $2 + 0; if (1.25 * v > 171000) bad = 1 } END { exit bad }' dry.txt || fail "a point of '$line' exceeds the walltime"
+  awk '/driven_column/ { print $4 }' dry.txt >> keys.txt
 done < large.txt
+distinct=$(grep -o '^# [0-9]* distinct points' print.txt | awk '{ print $2 }')
+[ "$(wc -l < keys.txt)" -eq "$distinct" ] || fail "the sweeps list $(wc -l < keys.txt) points, the preset $distinct distinct ones"
+[ "$(sort -u keys.txt | wc -l)" -eq "$distinct" ] || fail "two sweeps share a point"
 # The 64 shards of the N = 1000 replicas' sweep list each of its points once.
 read -ra words <<< "$(grep -- '--N 1000 .*--replicas' large.txt | sed 's/^granchain //')"
 "$binary" "${words[@]}" --db "$work/none.db" --dry-run | awk '/driven_column/ {print $4}' | sort > all.txt
