@@ -19,6 +19,7 @@ kBeyondNPower = 2.2; with today's model p is the residual, about 0).
 """
 import argparse
 import math
+import sqlite3
 import subprocess
 import sys
 
@@ -53,19 +54,13 @@ def main(argv):
         for line in out.splitlines():
             if "driven_column" in line:
                 f = line.split()
-                predicted[f[3]] = (N, float(f[1]), line)
-    csv = subprocess.run([a.granchain, "export", "--db", a.store], check=True, capture_output=True, text=True).stdout.splitlines()
-    head = csv[0].split(",")
-    col = {name: i for i, name in enumerate(head)}
+                predicted[f[3]] = (N, float(f[1]), line)  # by seed
+    con = sqlite3.connect("file:%s?mode=ro" % a.store, uri=True)
     rows = []
-    for line in csv[1:]:
-        f = line.split(",")
-        seed = f[col["seed"]]
-        if seed not in predicted or f[col["cpu_seconds"]] == "":
-            continue
-        N, pred, _ = predicted[seed]
-        e, k = float(f[col["e"]]), float(f[col["k"]])
-        rows.append((N, e, k, pred, float(f[col["cpu_seconds"]])))
+    for seed, e, k, cpu in con.execute("SELECT seed, e, k, cpu_seconds FROM runs WHERE cpu_seconds IS NOT NULL"):
+        if str(seed) in predicted:
+            N, pred, _ = predicted[str(seed)]
+            rows.append((N, e, k, pred, cpu))
     if not rows:
         sys.stderr.write("no run of the calibration grid in %s (run it with --run)\n" % a.store)
         return 2

@@ -1,6 +1,7 @@
 #include "analysis/contact_layers.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace granchain::analysis {
@@ -16,13 +17,14 @@ ContactLayer contact_layer(const std::vector<PairContacts>& pairs, int first_pai
     const PairContacts& p = pairs[static_cast<std::size_t>(i)];
     layer.contacts += p.contacts;
     in_contact += p.contact_fraction;
-    in_long += p.long_fraction;  // (NaN for a run stored before it was kept: the share is NaN then)
+    in_long += p.long_fraction;
     duration_sum += p.mean * static_cast<double>(p.contacts);
     layer.longest = std::max(layer.longest, p.longest);
   }
   layer.contact_fraction = in_contact / (last_pair - first_pair + 1);
   if (layer.contacts > 0) layer.mean_duration = duration_sum / static_cast<double>(layer.contacts);
-  layer.long_share = in_contact > 0 ? in_long / in_contact : in_long * 0.0;
+  if (std::isnan(in_long)) layer.long_share = std::nan("");  // a run stored before the observer kept it
+  else if (in_contact > 0) layer.long_share = in_long / in_contact;
   return layer;
 }
 

@@ -37,12 +37,13 @@ std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<
 // so that the sweeps `--print-sweeps` lists, each split into shards of its own, never share a point
 // (two job-array tasks would otherwise compute it twice, into different stores).
 std::vector<GridBlock> large_blocks(const ReproduceFlags& o) {
-  std::vector<GridBlock> blocks = across_blocks(o, {kAcrossN.begin(), kAcrossN.end() - 2}, "1");  // N < 100
+  std::vector<int> single, replicated;  // N < 100: the paper's grid as it is; N >= 100: with replicas
+  for (int N : kAcrossN) (N < 100 ? single : replicated).push_back(N);
+  replicated.insert(replicated.end(), kLargeN.begin(), kLargeN.end());
+  std::vector<GridBlock> blocks = across_blocks(o, single, "1");
   std::vector<double> condensed, uncondensed;
   for (double c : critical_region_c()) (c >= 2.6 - 1e-9 ? condensed : uncondensed).push_back(c);
-  std::vector<int> Ns = {kAcrossN.end() - 2, kAcrossN.end()};  // 100, 150
-  Ns.insert(Ns.end(), kLargeN.begin(), kLargeN.end());
-  for (int N : Ns) {
+  for (int N : replicated) {
     const bool large = N >= 200;
     blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, large ? uncondensed : critical_region_c()), preset_k(o),
                       preset_T(o, N), "1"});

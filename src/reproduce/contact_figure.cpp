@@ -14,8 +14,10 @@
 #include <optional>
 #include <tuple>
 
+#include "analysis/blocking.hpp"
 #include "analysis/contact_layers.hpp"
 #include "analysis/estimate_format.hpp"
+#include "config/value_list.hpp"
 #include "reproduce/figures.hpp"
 #include "store/results_store.hpp"
 
@@ -49,21 +51,14 @@ std::string e_of(const EChoice& c, int N) {
 }
 
 // A value over the replicas: their mean and the standard error of the mean (two replicas:
-// |a - b| / 2); NaN from a single replica (a point whose second replica is not stored yet).
+// |a - b| / 2; mean_and_error), the error NaN from a single replica (a point whose second replica
+// is not stored yet).
 struct ReplicaValue {
-  double value = 0, error = std::nan("");
+  double value = 0, error = 0;
 };
 ReplicaValue over_replicas(const std::vector<double>& x) {
-  ReplicaValue r;
-  if (x.empty()) return r;
-  for (double v : x) r.value += v;
-  r.value /= static_cast<double>(x.size());
-  if (x.size() >= 2) {
-    double s = 0;
-    for (double v : x) s += (v - r.value) * (v - r.value);
-    r.error = std::sqrt(s / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()));
-  }
-  return r;
+  const auto [value, error] = mean_and_error(x);
+  return {value, error};
 }
 
 // "0.0130 ± 0.0021" (the error to two significant digits), "0.013 (one run)" without an error.
@@ -91,15 +86,10 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
   const std::vector<GridBlock> blocks = contacts_grid(o);
   const std::vector<SweepPoint> points = grid_points(blocks);
   const std::vector<std::string> failures = run_missing_points(points, o, o.figure, log);
-  ResultsStore store(o.db, o.stored_only ? ResultsStore::Access::ReadOnly : ResultsStore::Access::ReadWrite);
+  ResultsStore store(o.db, ResultsStore::Access::ReadOnly);  // (run_missing_points made it, unless --stored-only)
 
-  // Each (N, e, k): the stored replicas' results.
-  struct Cell {
-    int N;
-    double e, k;
-    std::vector<RunResult> runs;
-  };
-  std::map<std::tuple<int, double, double>, Cell> cells;
+  // Each (N, e, k): the stored replicas' results with contact durations.
+  std::map<std::tuple<int, double, double>, std::vector<RunResult>> cells;
   double cpu = 0;
   int stationary = 0, stored = 0;
   for (const SweepPoint& p : points) {
@@ -108,11 +98,7 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
     ++stored;
     cpu += r->result.cpu_seconds > 0 ? r->result.cpu_seconds : r->result.wall_seconds;
     stationary += r->result.stationary() ? 1 : 0;
-    Cell& c = cells[{p.spec.params.N, p.spec.params.e, p.spec.params.k}];
-    c.N = p.spec.params.N;
-    c.e = p.spec.params.e;
-    c.k = p.spec.params.k;
-    if (r->result.contacts.size() >= 2) c.runs.push_back(std::move(r->result));
+    if (r->result.contacts.size() >= 2) cells[{p.spec.params.N, p.spec.params.e, p.spec.params.k}].push_back(std::move(r->result));
   }
   if (o.stored_only && stored == 0) throw NothingStored(fmt::format("none of the {} runs of contacts is in {}", points.size(), o.db));
   if (stored < static_cast<int>(points.size()))
@@ -143,14 +129,17 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
                       "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                       choice.label, analysis::kLongContact, analysis::kLongContact);
     for (int N : contact_ns(o)) {
-      const double e = std::stod(e_of(choice, N));
+      // (the values as the grid parsed them, so that they find its points)
+      const double e = parse_value_list(e_of(choice, N), "--e").front();
       nlohmann::json col = {{"N", N}, {"e", e}, {"k", nlohmann::json::array()}};
-      for (const auto& [key, cell] : cells) {
-        if (cell.N != N || std::abs(cell.e - e) > 1e-12 || cell.runs.empty()) continue;
+      for (const double k : parse_value_list(contact_k(o), "--k")) {
+        const auto found = cells.find({N, e, k});
+        if (found == cells.end()) continue;
+        const std::vector<RunResult>& runs = found->second;
         // Per layer and per replica, then over the replicas.
         std::vector<std::vector<analysis::ContactLayer>> tenths;
         std::vector<analysis::ContactLayer> whole;
-        for (const RunResult& r : cell.runs) {
+        for (const RunResult& r : runs) {
           tenths.push_back(analysis::contact_layers(r.contacts, kLayers));
           whole.push_back(analysis::contact_layer(r.contacts, 1, static_cast<int>(r.contacts.size()) - 1));
         }
@@ -173,24 +162,24 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
           const double f = over(ls, frac).value;
           if (f > top_fraction) top_fraction = f, top_layer = l;
         }
-        md += fmt::format("| {} | {:.6g} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({:.3f}) |\n", N, e, power_of_ten_text(cell.k),
+        md += fmt::format("| {} | {:.6g} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({:.3f}) |\n", N, e, power_of_ten_text(k),
                           value_text(over(bottom, frac)), value_text(over(bottom, mean)), value_text(over(bottom, longest)),
                           value_text(over(bottom, share)), value_text(over(whole, frac)), value_text(over(whole, mean)),
                           value_text(over(whole, longest)), value_text(over(whole, share)), top_layer + 1, top_fraction);
         // Per pair, over the replicas, for the profiles.
         nlohmann::json height = nlohmann::json::array(), fraction = nlohmann::json::array(), duration = nlohmann::json::array();
-        const std::size_t pairs = cell.runs.front().contacts.size();
+        const std::size_t pairs = runs.front().contacts.size();
         for (std::size_t i = 1; i < pairs; ++i) {
           double f = 0, d = 0;
-          for (const RunResult& r : cell.runs) f += r.contacts[i].contact_fraction, d += r.contacts[i].mean;
+          for (const RunResult& r : runs) f += r.contacts[i].contact_fraction, d += r.contacts[i].mean;
           height.push_back(static_cast<double>(i) / N);
-          fraction.push_back(f / static_cast<double>(cell.runs.size()));
-          duration.push_back(d / static_cast<double>(cell.runs.size()));
+          fraction.push_back(f / static_cast<double>(runs.size()));
+          duration.push_back(d / static_cast<double>(runs.size()));
         }
         // The bottom tenth's durations pooled over its pairs and the replicas: contacts per bin of
         // log2(duration / tau_c) from bin `first_bin` on (the contacts that ended in the window).
         std::map<int, std::uint64_t> pooled;
-        for (const RunResult& r : cell.runs)
+        for (const RunResult& r : runs)
           for (int i = tenths.front().front().first_pair; i <= tenths.front().front().last_pair; ++i) {
             const PairContacts& p = r.contacts[static_cast<std::size_t>(i)];
             for (std::size_t j = 0; j < p.histogram.size(); ++j)
@@ -201,7 +190,7 @@ FigureOutcome reproduce_contacts(const ReproduceFlags& o, ReproductionLog& log) 
         if (!pooled.empty())
           for (int b = first_bin; b <= pooled.rbegin()->first; ++b) counts.push_back(pooled.count(b) ? pooled[b] : 0);
         const ReplicaValue bs = over(bottom, share);
-        col["k"].push_back({{"k", cell.k}, {"height", height}, {"fraction", fraction}, {"mean", duration},
+        col["k"].push_back({{"k", k}, {"height", height}, {"fraction", fraction}, {"mean", duration},
                             {"bottom_long_share", bs.value}, {"bottom_long_share_err", bs.error},
                             {"bottom_histogram", {{"first_bin", first_bin}, {"counts", counts}}}});
       }
