@@ -185,11 +185,18 @@ py::dict collapse(const py::kwargs& kwargs) {
       launches_done = done;
       collisions += c;
     };
-    result = run_collapse(q.spec, log, on_launch, {}, &cancel);
-    if (!q.db.empty() && !result.interrupted) {
-      ResultsStore store(q.db);
-      id = store.insert_collapse(result);
+    if (q.db.empty() || q.record) {
+      result = run_collapse(q.spec, log, on_launch, {}, &cancel);
+      if (!q.db.empty() && !result.interrupted) id = ResultsStore(q.db).insert_collapse(result);
+      return;
     }
+    // With a store and no records the count is carried over sittings (ResultsStore::launch_checkpoint):
+    // an interrupted count keeps its launches there, and the same call continues from them.
+    ResultsStore store(q.db);
+    const LaunchCheckpoint checkpoint = store.launch_checkpoint(q.spec);
+    launches_done = static_cast<int>(checkpoint.done.size());
+    result = run_collapse(q.spec, log, on_launch, {}, &cancel, &checkpoint);
+    if (!result.interrupted) id = store.insert_collapse(result);
   };
   std::optional<py::error_already_set> stop = run_interruptible(cancel, work, progress);
   if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);  // the progress callback's own error

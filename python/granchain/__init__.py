@@ -111,13 +111,16 @@ def collapse(**kwargs):
     derive_seed(seed, r) (the same launches at every e and k); threads: default all cores (the
     numbers do not depend on it); collapse_collisions (default 1000) and collapse_time (default
     1e-9) set the hard engine's collapse watch and are refused for the soft engines. db=PATH stores
-    the count; record_collisions=True adds every collision.
+    the count and, without record_collisions, carries it over sittings: each launch is kept in the
+    store as it finishes, and the same call after an interruption counts only the launches missing
+    (the same numbers, bit for bit); record_collisions=True adds every collision (and runs every
+    launch).
 
     progress: None (a line rewritten in place on a terminal or in a notebook, nothing otherwise),
     False, True, or callable(dict) with done, total, collisions, elapsed. Ctrl-C ends the count
     within a fraction of a second and raises granchain.Interrupted whose .result is the count over
     the launches finished before the first unfinished one (the same numbers as a count of that many
-    launches; not stored, complete=False).
+    launches; not stored, complete=False; with db, every launch finished is kept for the next call).
 
     Returns a CollapseResult (a dict whose keys are also attributes; .launches() and .to_pandas()
     give one row per launch): parameters, D, tau_c, n_tot and n_tot_err (mean and standard error over the

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -75,8 +76,13 @@ Subcommand add_collapse_command(CLI::App& app) {
       "For each e with several k, the slope of n_tot against log10 k between successive k is computed\n"
       "from the per-launch differences (the same launches at every k), and alpha = d ln n_tot / d ln k\n"
       "from the two means (for n_tot ~ k^alpha); for N = 3 below e_c(3) the slope is\n"
-      "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n" +
-      exit_codes_help("2 bad input (nothing written), 3 unphysical (nothing written), 4 store failed"));
+      "shown beside Eq. (ntot-log) and beside -ln 10 / ln q, the slope of all collisions (see docs/collapse.md).\n"
+      "With a store (--db, without --events) a count is carried over sittings: its launches are kept in the\n"
+      "store's table collapse_launches as they finish, so a count stopped anywhere (Ctrl-C, a batch job's walltime)\n"
+      "continues when the same command runs again, and gives the same numbers bit for bit; a count stored\n"
+      "whole is read back, not counted again.\n" +
+      exit_codes_help("2 bad input (nothing written), 3 unphysical (no count stored or written; the launches counted "
+                      "before it stay in the store), 4 store failed"));
   return {sub_, [impl_] { return execute_collapse(impl_); }};
 }
 
@@ -126,9 +132,24 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     events.open(events_direct ? o.events_path : events_tmp);
     events << "e,k,realization,collision,t_begin,t_end,i,j,speed_in,speed_out\n";
   }
-  announce_on_interrupt("the counts did not finish; nothing was stored or written", events_tmp);
+  // With a store (and no event file, which needs every launch run now) each count is carried over
+  // sittings: its launches are kept in the store as they finish, a count stored whole is read
+  // back, and a rerun of the same command continues where the last one stopped.
+  const bool db_existed = !o.no_db && std::filesystem::exists(o.db_path, fs_error);
+  std::optional<ResultsStore> store;
+  if (!o.no_db && o.events_path.empty()) store.emplace(o.db_path);
+  announce_on_interrupt(store ? fmt::format("the counts did not finish; the launches counted are kept in {} (table "
+                                            "collapse_launches) and the same command continues from them; nothing else "
+                                            "was written", o.db_path)
+                              : "the counts did not finish; nothing was stored or written",
+                        events_tmp);
   auto remove_tmp = [&] {
     if (!events_tmp.empty()) std::filesystem::remove(events_tmp);
+    // A store this command created and left without a count or a kept launch is not left behind.
+    if (store && !db_existed && store->empty()) {
+      store.reset();
+      std::filesystem::remove(o.db_path, fs_error);
+    }
   };
 
   if (!o.quiet && !json_stdout) {
@@ -148,7 +169,20 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   const SweepProgressPrinter printer(tty, "collapse", "launches");
   const auto t_start = std::chrono::steady_clock::now();
   auto t_last = t_start;
-  const std::size_t total_launches = es.size() * ks.size() * static_cast<std::size_t>(base.realizations);
+  // The point of list position (e, k) as counted: the spec, and what the store already holds of it.
+  const auto point_spec = [&](double e, double k) {
+    CollapseSpec spec = base;
+    spec.params.e = e;
+    spec.params.k = k;
+    return spec;
+  };
+  std::size_t total_launches = 0;
+  for (double e : es)
+    for (double k : ks) {
+      const CollapseSpec spec = point_spec(e, k);
+      if (store && store->find_collapse(spec)) continue;
+      total_launches += static_cast<std::size_t>(base.realizations - (store ? store->kept_launches(spec) : 0));
+    }
   std::size_t launches_done = 0;
   std::uint64_t collisions_done = 0;
   auto report = [&](bool final) {
@@ -175,9 +209,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     for (double e : es) {
       const std::size_t first = results.size();
       for (double k : ks) {
-        CollapseSpec spec = base;
-        spec.params.e = e;
-        spec.params.k = k;
+        const CollapseSpec spec = point_spec(e, k);
         CollisionLog log;
         if (events.is_open()) {
           log = [&events, e, k](const std::vector<CollisionRecord>& recs) {
@@ -187,13 +219,29 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
             }
           };
         }
-        results.push_back(run_collapse(spec, log, on_launch));
+        std::optional<CollapseResult> stored_count = store ? store->find_collapse(spec) : std::nullopt;
+        int carried = 0;
+        if (stored_count) {
+          stored_count->spec.threads = spec.threads;
+          results.push_back(*stored_count);
+        } else if (store) {
+          const LaunchCheckpoint checkpoint = store->launch_checkpoint(spec);
+          carried = static_cast<int>(checkpoint.done.size());
+          results.push_back(run_collapse(spec, log, on_launch, {}, nullptr, &checkpoint));
+        } else {
+          results.push_back(run_collapse(spec, log, on_launch));
+        }
         const CollapseResult& r = results.back();
         if (show_progress && tty) fmt::print(stderr, "\r{:<100}\r", "");  // the table row replaces the progress line
         if (!o.quiet && !json_stdout) {
           fmt::print("{:>8} {:>10} {:>12} {:>9} {:>7} {:>7} {:>10} {:>8.2f}\n", e, hard ? "inf" : fmt::format("{:g}", k),
                      num(r.n_tot_mean), num(r.n_tot_error), r.n_tot_min, r.n_tot_max,
                      fmt::format("{}/{}", r.collapsed, base.realizations), r.wall_seconds);
+          if (stored_count)
+            fmt::print("{:>19} (stored in {}: read back, not counted again)\n", "", o.db_path);
+          else if (carried > 0)
+            fmt::print("{:>19} ({} of {} launches carried over from an earlier sitting, kept in {})\n", "", carried,
+                       base.realizations, o.db_path);
           if (r.grazing_contacts > 0)
             fmt::print("{:>19} ({} of {} collisions began below the engine's resolution, {} of them held; docs/engines.md)\n",
                        "", r.grazing_contacts, r.collisions, r.held_contacts);
@@ -270,8 +318,8 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
                           events_tmp);
     std::vector<std::int64_t> ids;
     try {
-      ResultsStore store(o.db_path);
-      for (const CollapseResult& r : results) ids.push_back(store.insert_collapse(r));
+      if (!store) store.emplace(o.db_path);
+      for (const CollapseResult& r : results) ids.push_back(store->insert_collapse(r));
       j["stored"] = {{"db", o.db_path}, {"collapse_run_ids", ids}};
       stored = fmt::format("{} rows in {} (table collapse_runs)", ids.size(), o.db_path);
     } catch (const StoreError& e) {

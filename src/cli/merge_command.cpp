@@ -26,7 +26,8 @@ Subcommand add_merge_command(CLI::App& app) {
   sub_ = app.add_subcommand("merge", "Join results stores (job-array shards, other machines) into one.");
   sub_->footer(
       "Every run (with its profiles and point key) and every collapse count (with its realisations) of the\n"
-      "sources is copied into --into, which is created if missing. A point held by both with identical\n"
+      "sources is copied into --into, which is created if missing, and every launch kept of a count not yet\n"
+      "finished (table collapse_launches), so that the count continues from the target. A point held by both with identical\n"
       "results is kept once, so merging again is harmless; with different results the merge stops, names\n"
       "both runs and the first differing number, and writes nothing (exit 2). Sources are only read.\n"
       "Example (job array): granchain merge --into all.db shard-*.db\n" +
@@ -46,11 +47,14 @@ int execute_merge(const std::shared_ptr<MergeFlags>& impl_) {
   try {
     const MergeReport r = merge_stores(impl_->into, impl_->sources);
     if (!impl_->quiet)
-      fmt::print("merged {} store{} into {}: {} runs added, {} already there; {} collapse counts added, {} already there{}\n",
+      fmt::print("merged {} store{} into {}: {} runs added, {} already there; {} collapse counts added, {} already there{}{}\n",
                  impl_->sources.size(), impl_->sources.size() == 1 ? "" : "s", impl_->into, r.runs_added,
                  r.runs_already_there, r.collapse_added, r.collapse_already_there,
                  r.collapsed_added + r.collapsed_already_there > 0
                      ? fmt::format("; {} collapsed hard-sphere points added, {} already there", r.collapsed_added, r.collapsed_already_there)
+                     : "",
+                 r.launches_added + r.launches_already_there > 0
+                     ? fmt::format("; {} launches of unfinished counts added, {} already there", r.launches_added, r.launches_already_there)
                      : "");
     return kExitOk;
   } catch (const MergeWriteError& e) {

@@ -134,7 +134,8 @@ int execute_reproduce(const std::shared_ptr<ReproduceFlags>& impl_, const std::s
   }
   if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   set_parallelism(o.threads, 1);
-  announce_on_interrupt(fmt::format("every run that finished is stored in {}; repeat the same command to resume (stored runs are reused)", o.db));
+  announce_on_interrupt(fmt::format("every run that finished is stored in {}, and every launch of a free-space count; repeat the same "
+                                    "command to resume (stored runs and launches are reused)", o.db));
   int code = kExitOk;
   const ReproductionOutcome result = run_figures(chosen, o, [&code](const FigureReport& r) {
     const FigureOutcome& out = r.outcome;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "config/collapse_options.hpp"
 #include "config/run_options.hpp"
 
 namespace granchain {
@@ -40,5 +41,14 @@ std::string point_key_without_seed(const RunSpec& s) { return identity_text(s, t
 std::string trajectory_key(const RunSpec& s) { return identity_text(s, false, true); }
 
 std::string point_key(const RunSpec& spec) { return identity_text(spec, true, true); }
+
+std::string collapse_key(const CollapseSpec& spec) { return collapse_key(stored_collapse_values(spec)); }
+
+std::string collapse_key(const std::vector<TypedValue>& values) {
+  const std::vector<const Parameter*> stored = stored_collapse_parameters();
+  std::string key = "collapse";
+  for (std::size_t i = 0; i < stored.size(); ++i) key += fmt::format(" {}={}", stored[i]->store_column, value_text(*stored[i], values[i]));
+  return key;
+}
 
 }  // namespace granchain

@@ -6,7 +6,10 @@
 // column enters as `column=value`, in the order of its part of the identity (RunIdentity: engine,
 // physics, window, engine options, seed), where it acts.
 #include <string>
+#include <vector>
 
+#include "config/parameter.hpp"
+#include "simulation/collapse_run.hpp"
 #include "simulation/driven_run.hpp"
 
 namespace granchain {
@@ -23,5 +26,12 @@ std::string point_key(const RunSpec& spec);
 std::string trajectory_key(const RunSpec& spec);
 // The same without the seed: what a sweep point's seed is derived from.
 std::string point_key_without_seed(const RunSpec& spec);
+
+// The identity of a collapse count, read off its stored parameters (config/collapse_options.hpp)
+// in their order: "collapse N=100 e=0.5 k=1e+17 engine=exact setup=free_space ... seed=1". Two
+// counts with one key are the same launches and give identical results.
+std::string collapse_key(const CollapseSpec& spec);
+// The same from the values of the stored parameters, in their order (a row of collapse_runs).
+std::string collapse_key(const std::vector<TypedValue>& stored_values);
 
 }  // namespace granchain

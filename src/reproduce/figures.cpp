@@ -7,6 +7,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 #include <limits>
 #include <filesystem>
 #include <set>
@@ -106,6 +110,40 @@ double ReproduceFlags::time_left() const {
   return time_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - started_at).count();
 }
 
+namespace {
+
+// Sets `passed` once the given seconds have gone by (never for an infinite time), unless destroyed
+// first.
+class Deadline {
+ public:
+  explicit Deadline(double seconds) {
+    if (!std::isfinite(seconds)) return;
+    watch_ = std::thread([this, seconds] {
+      std::unique_lock lock(mu_);
+      if (!wake_.wait_for(lock, std::chrono::duration<double>(std::max(0.0, seconds)), [this] { return done_; })) passed = true;
+    });
+  }
+  ~Deadline() {
+    {
+      std::lock_guard lock(mu_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    if (watch_.joinable()) watch_.join();
+  }
+  Deadline(const Deadline&) = delete;
+  Deadline& operator=(const Deadline&) = delete;
+  CancelFlag passed{false};
+
+ private:
+  std::mutex mu_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread watch_;
+};
+
+}  // namespace
+
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label) {
   if (o.stored_only) {
     ResultsStore reader(o.db, ResultsStore::Access::ReadOnly);
@@ -122,7 +160,17 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
   if (!o.quiet)
     fmt::print(stderr, "reproduce {}: N = {}, e = {:g}, k = {:g}, {} launches\n", label, spec.params.N, spec.params.e, spec.params.k,
                spec.realizations);
-  CollapseResult r = run_collapse(spec);
+  // Carried over sittings: the launches counted before an interruption are kept in the store. The
+  // count stops where the time limit falls (its launches under way are lost, those done are kept).
+  const LaunchCheckpoint checkpoint = store.launch_checkpoint(spec);
+  if (!o.quiet && !checkpoint.done.empty())
+    fmt::print(stderr, "reproduce {}: {} of {} launches carried over from an earlier sitting\n", label, checkpoint.done.size(), spec.realizations);
+  Deadline deadline(o.time_left());
+  const CollapseResult r = run_collapse(spec, {}, {}, {}, &deadline.passed, &checkpoint);
+  if (r.interrupted)
+    throw TimeLimitReached(fmt::format("the time limit fell inside the free-space count N = {}, e = {:g}, k = {:g}: {} of its {} launches "
+                                       "are kept in {}, and the same command continues it",
+                                       spec.params.N, spec.params.e, spec.params.k, store.kept_launches(spec), spec.realizations, o.db));
   store.insert_collapse(r);
   return r;
 }

@@ -9,6 +9,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <tuple>
 #include <utility>
@@ -160,23 +161,34 @@ ChainState collapse_initial_state(const CollapseSpec& spec, int r) {
 }
 
 CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, const LaunchProgress& progress,
-                            const ClosedStateLog& states_log, const CancelFlag* cancel) {
+                            const ClosedStateLog& states_log, const CancelFlag* cancel, const LaunchCheckpoint* checkpoint) {
   const auto wall0 = std::chrono::steady_clock::now();
   const int R = spec.realizations;
+  if (log && checkpoint && !checkpoint->done.empty())
+    throw std::invalid_argument("run_collapse: a collision log needs every launch run now, not carried over from a checkpoint");
   CollapseResult res;
   res.spec = spec;
   res.law = contact_law(spec.params);
   res.outcomes.resize(R);
 
   // Workers take realisations in order; the calling thread hands their records to `log` in
-  // realisation order. With a log, workers stay within a window of the next record to hand over,
-  // so memory stays bounded whatever the lengths of the realisations.
+  // realisation order, and each new launch to the checkpoint as it finishes. With a log, workers
+  // stay within a window of the next record to hand over, so memory stays bounded whatever the
+  // lengths of the realisations.
   const int threads = std::max(1, std::min(spec.threads, R));
   const int window = 4 * threads;
   std::vector<std::vector<CollisionRecord>> pending(R);
   std::vector<std::vector<ClosedState>> pending_states(R);
   const bool keep_states = log && states_log;
-  std::vector<char> finished(R, 0);
+  std::vector<char> finished(R, 0), carried(R, 0);
+  if (checkpoint) {
+    for (const auto& [r, outcome] : checkpoint->done) {
+      if (r < 0 || r >= R) continue;
+      res.outcomes[r] = outcome;
+      finished[r] = carried[r] = 1;
+    }
+  }
+  std::vector<int> just_finished;  // new launches not yet handed to the checkpoint
   std::mutex mu;
   std::condition_variable cv;
   int next = 0, flushed = 0;
@@ -187,17 +199,22 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
       int r;
       {
         std::unique_lock lock(mu);
+        while (next < R && carried[next]) ++next;
         cv.wait(lock, [&] { return failure || cancel_requested(cancel) || next >= R || !log || next < flushed + window; });
+        while (next < R && carried[next]) ++next;
         if (failure || cancel_requested(cancel) || next >= R) return;
         r = next++;
       }
       try {
+        const auto t0 = std::chrono::steady_clock::now();
         RealizationRun run = run_realization(spec, r, static_cast<bool>(log), keep_states, cancel);
+        run.outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::lock_guard lock(mu);
         res.outcomes[r] = run.outcome;
         pending[r] = std::move(run.records);
         pending_states[r] = std::move(run.states);
         finished[r] = 1;
+        just_finished.push_back(r);
       } catch (const RunCancelled&) {
         cv.notify_all();
         return;
@@ -208,29 +225,49 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
       cv.notify_all();
     }
   };
+  // Hands the launches finished since the last call to the checkpoint (unlocking while it writes);
+  // one that cannot be kept ends the count like a failed launch.
+  const auto hand_over = [&](std::unique_lock<std::mutex>& lock) {
+    std::vector<int> now = std::exchange(just_finished, {});
+    if (!checkpoint || !checkpoint->finished || now.empty()) return;
+    std::vector<RealizationOutcome> outcomes;
+    for (int r : now) outcomes.push_back(res.outcomes[r]);
+    lock.unlock();
+    std::exception_ptr kept;
+    try {
+      for (std::size_t i = 0; i < now.size(); ++i) checkpoint->finished(now[i], outcomes[i]);
+    } catch (...) {
+      kept = std::current_exception();
+    }
+    lock.lock();
+    if (kept && !failure) failure = kept;
+  };
   std::vector<std::thread> pool;
   for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
   {
     std::unique_lock lock(mu);
     while (flushed < R) {
       // A cancelled count keeps the launches 0 .. flushed-1, whose records are handed over already.
-      const auto ready = [&] { return failure || finished[flushed] || cancel_requested(cancel); };
+      const auto ready = [&] { return failure || finished[flushed] || !just_finished.empty() || cancel_requested(cancel); };
       if (cancel) {
         while (!cv.wait_for(lock, std::chrono::milliseconds(50), ready)) {}
       } else {
         cv.wait(lock, ready);
       }
+      hand_over(lock);
       if (failure) break;
       if (!finished[flushed]) {
+        if (!cancel_requested(cancel)) continue;  // a later launch finished first
         res.interrupted = true;
         break;
       }
       std::vector<CollisionRecord> records = std::move(pending[flushed]);
       std::vector<ClosedState> states = std::move(pending_states[flushed]);
       const std::uint64_t collisions = res.outcomes[flushed].particle_collisions;
+      const bool report = !carried[flushed];
       ++flushed;
       cv.notify_all();
-      if (log || progress) {
+      if (report && (log || progress)) {
         lock.unlock();
         if (log) log(records);
         if (keep_states) states_log(states);
@@ -241,6 +278,17 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
   }
   cv.notify_all();
   for (auto& t : pool) t.join();
+  {
+    std::unique_lock lock(mu);
+    hand_over(lock);  // launches that finished after the last one handed over, or beside a failure
+    if (checkpoint && checkpoint->flush) {
+      try {
+        checkpoint->flush();
+      } catch (...) {
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
   if (failure) std::rethrow_exception(failure);
   if (res.interrupted) {
     res.outcomes.resize(static_cast<std::size_t>(flushed));
@@ -265,7 +313,8 @@ CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log, c
   }
   if (counts.empty()) res.n_tot_min = 0;
   std::tie(res.n_tot_mean, res.n_tot_error) = mean_and_error(counts);
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() +
+                     (checkpoint ? checkpoint->earlier_seconds : 0.0);
   return res;
 }
 

@@ -18,6 +18,7 @@
 // and left out of the n_tot average; the fraction is reported.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,7 @@ struct RealizationOutcome {
   // Ended because every relative velocity fell below the engine's resolution (1e-13 of the speeds)
   // before the stop rule held: the chain moves as one body (seen at k >= 1e14, docs/collapse.md).
   bool one_body = false;
+  double seconds = 0;  // wall time the launch took on its thread
   std::uint64_t n_tot() const { return particle_collisions + wall_hits; }
 };
 
@@ -105,10 +107,26 @@ struct ClosedState {
 // With a ClosedStateLog (and a CollisionLog), each realisation's closed states are handed over
 // after its records, in the same order; keeping them costs one state per collision.
 using ClosedStateLog = std::function<void(const std::vector<ClosedState>&)>;
+// A count carried over sittings, launch by launch (store/launch_checkpoint.hpp keeps it in a
+// results store). Launch r depends on (spec, r) alone, so a count assembled from launches of
+// several sittings is the count of one sitting, bit for bit.
+struct LaunchCheckpoint {
+  std::map<int, RealizationOutcome> done;  // launches counted in earlier sittings: not run again
+  double earlier_seconds = 0;              // the wall time those sittings spent on them
+  // Each launch counted now, on the calling thread, in the order they finish (not launch order).
+  std::function<void(int r, const RealizationOutcome&)> finished;
+  // Called once before run_collapse returns (or throws): whatever `finished` has not yet made
+  // durable must be, so that a caller may batch its writes.
+  std::function<void()> flush;
+};
 // cancel (simulation/cancellation.hpp): when set, the launches under way are abandoned and the
 // result holds those finished before the first unfinished one (CollapseResult::interrupted).
+// checkpoint: its done launches are taken as counted (no records or progress for them: a
+// CollisionLog with done launches is refused, std::invalid_argument) and every new one is handed to
+// its `finished`; wall_seconds then includes earlier_seconds.
 CollapseResult run_collapse(const CollapseSpec& spec, const CollisionLog& log = {}, const LaunchProgress& progress = {},
-                            const ClosedStateLog& states = {}, const CancelFlag* cancel = nullptr);
+                            const ClosedStateLog& states = {}, const CancelFlag* cancel = nullptr,
+                            const LaunchCheckpoint* checkpoint = nullptr);
 
 // How n_tot changes between two counts of the same launches at k1 < k2 (same spec otherwise).
 struct KSlope {

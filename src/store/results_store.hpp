@@ -1,7 +1,7 @@
 #pragma once
 // The results store: an embedded SQLite database, one row per run in `runs`, the per-particle
-// profiles in `profiles`, free-space collapse counts in `collapse_runs` and `collapse_realizations`
-// (store/collapse_counts.cpp). Every run is written in one transaction, so an interrupted or failed
+// profiles in `profiles`, free-space collapse counts in `collapse_runs` and `collapse_realizations`,
+// and the launches of counts not yet finished in `collapse_launches` (store/collapse_counts.cpp). Every run is written in one transaction, so an interrupted or failed
 // run leaves no partial row (SQLite's atomic commit holds even through kill -9 or power loss).
 #include <cstdint>
 #include <functional>
@@ -131,9 +131,21 @@ class ResultsStore {
   // returned: a repeated command adds nothing.
   std::int64_t insert_collapse(const CollapseResult& r);
   // The stored count with this definition (collapse_identity_columns()), with its per-launch outcomes,
-  // or nothing. What the store does not keep (contacts below the exact engine's resolution) is 0.
+  // or nothing. The contacts below the exact engine's resolution are read from the count's JSON
+  // (totals only; 0 per launch).
   std::optional<CollapseResult> find_collapse(const CollapseSpec& spec);
+  // A count carried over sittings: its launches kept in collapse_launches by collapse_key(spec) as
+  // they finish (batched, a transaction at most every second), so that a count stopped anywhere (a
+  // signal, a batch job's walltime, a Python interrupt) continues from them when run again; insert_collapse
+  // deletes them once the whole count is stored. The checkpoint writes through this store, which
+  // must outlive it. Launches are matched by the count's definition, not by code version (as
+  // stored counts are).
+  LaunchCheckpoint launch_checkpoint(const CollapseSpec& spec);
+  // How many launches of this count are kept (0 for a store without the table).
+  int kept_launches(const CollapseSpec& spec);
   std::int64_t count_runs();
+  // No run, count, kept launch or collapsed point: a store as it was created.
+  bool empty();
   sqlite3* handle() { return db_; }
 
  private:

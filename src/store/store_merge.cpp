@@ -4,8 +4,11 @@
 
 #include <cstdio>
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
+#include "config/collapse_options.hpp"
+#include "config/run_key.hpp"
 #include "store/sqlite_statement.hpp"
 
 namespace granchain {
@@ -288,6 +291,77 @@ void merge_collapsed_points(sqlite3* target, sqlite3* source, const std::string&
   }
 }
 
+// The count_key of every count the target holds whole (collapse_runs): their launches are spent.
+std::unordered_set<std::string> whole_count_keys(sqlite3* target) {
+  const std::vector<const Parameter*> stored = stored_collapse_parameters();
+  std::string names;
+  for (const Parameter* p : stored) names += (names.empty() ? "" : ", ") + p->store_column;
+  SqlStatement counts(target, ("SELECT " + names + " FROM collapse_runs").c_str());
+  std::unordered_set<std::string> keys;
+  while (counts.row()) {
+    std::vector<TypedValue> values;
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      const int c = static_cast<int>(i);
+      switch (stored[i]->type) {
+        case ParameterType::Integer: values.emplace_back(static_cast<long long>(counts.column_int(c))); break;
+        case ParameterType::Real:
+        case ParameterType::RealList: values.emplace_back(counts.column_double(c)); break;
+        default: values.emplace_back(counts.column_text(c)); break;
+      }
+    }
+    keys.insert(collapse_key(values));
+  }
+  return keys;
+}
+
+// The launches of counts not yet stored whole (collapse_launches): copied unless the target holds
+// the count whole or the same launch already; the same launch with other numbers is a conflict
+// (the physics changed between the two).
+void merge_kept_launches(sqlite3* target, sqlite3* source, const std::string& source_path, const std::string& target_path,
+                         MergeReport& report) {
+  if (!has_table(source, "collapse_launches")) return;
+  const std::unordered_set<std::string> whole = whole_count_keys(target);
+  const char* columns = "count_key, realization, created_utc, code_version, sitting, sitting_seconds, particle_collisions, "
+                        "wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, one_body, seconds";
+  SqlStatement rows(source, fmt::format("SELECT {} FROM collapse_launches ORDER BY count_key, realization", columns).c_str());
+  SqlStatement there(target, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_launches WHERE count_key = ? AND "
+                             "realization = ?");
+  SqlStatement insert(target, fmt::format("INSERT INTO collapse_launches({}) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)", columns).c_str());
+  while (rows.row()) {
+    if (whole.count(rows.column_text(0)) > 0) {
+      ++report.launches_already_there;
+      continue;
+    }
+    there.bind_value(1, rows.column_value(0));
+    there.bind_value(2, rows.column_value(1));
+    if (there.row()) {
+      const bool same = there.column_int(0) == rows.column_int(6) && there.column_int(1) == rows.column_int(7) &&
+                        there.column_int(2) == rows.column_int(8) && there.column_double(3) == rows.column_double(9);
+      there.reset();
+      if (!same)
+        throw MergeConflict(fmt::format("merge: conflicting launches: launch {} of '{}' differs between '{}' and '{}'; nothing was merged",
+                                        rows.column_int(1), rows.column_text(0), target_path, source_path));
+      ++report.launches_already_there;
+      continue;
+    }
+    there.reset();
+    for (int c = 0; c < 14; ++c) insert.bind_value(c + 1, rows.column_value(c));
+    insert.run();
+    insert.reset();
+    ++report.launches_added;
+  }
+}
+
+// The target's own kept launches of counts it now holds whole are deleted, as storing a count does.
+void drop_spent_launches(sqlite3* target) {
+  SqlStatement drop(target, "DELETE FROM collapse_launches WHERE count_key = ?");
+  for (const std::string& key : whole_count_keys(target)) {
+    drop.bind(1, key);
+    drop.run();
+    drop.reset();
+  }
+}
+
 bool same_file(const std::string& a, const std::string& b) {
   struct stat sa {}, sb {};
   return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
@@ -308,8 +382,10 @@ MergeReport merge_into(const std::string& target, const std::vector<std::string>
       merge_runs(db, src.db, path, target, report);
       merge_collapse(db, src.db, path, target, report);
       merge_collapsed_points(db, src.db, path, target, report);
+      merge_kept_launches(db, src.db, path, target, report);
       exec(src.db, "COMMIT");
     }
+    drop_spent_launches(db);
     exec(db, kVersion1RunsToVersion2);  // rows merged from a version-1 source
     exec(db, kRunsVerdictsFromJson);    // rows merged from a source older than version 3
     exec(db, "COMMIT");

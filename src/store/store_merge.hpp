@@ -28,10 +28,13 @@ struct MergeReport {
   std::int64_t collapse_already_there = 0;
   std::int64_t collapsed_added = 0;           // hard-sphere sweep points that collapsed (collapsed_points)
   std::int64_t collapsed_already_there = 0;
+  std::int64_t launches_added = 0;           // kept launches of counts not yet whole (collapse_launches)
+  std::int64_t launches_already_there = 0;
 };
 
-// Copies every run (with its profiles and key), every collapse count (with its realisations) and
-// every collapsed hard-sphere point of the sources into target, which is created if missing. A point present in both with the same
+// Copies every run (with its profiles and key), every collapse count (with its realisations),
+// every collapsed hard-sphere point and every kept launch of an unfinished count (dropping those
+// of counts the target then holds whole) of the sources into target, which is created if missing. A point present in both with the same
 // results is kept once; with different results the merge throws MergeConflict naming both and
 // the differing numbers; a failure to write the target throws MergeWriteError. All sources go in
 // one transaction: on any error nothing is written.

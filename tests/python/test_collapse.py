@@ -124,6 +124,27 @@ def test_ctrl_c_ends_a_count_within_a_second_keeping_the_launches_done(tmp_path)
     assert not db.exists() or len(granchain.Store(db).collapse()) == 0
 
 
+def test_an_interrupted_count_with_a_store_continues_where_it_stopped(tmp_path):
+    # With db, every launch finished is kept in the store: the same call after Ctrl-C counts only the
+    # launches missing and gives the numbers of a count run in one go, bit for bit.
+    import sqlite3
+    db = tmp_path / "c.db"
+    kwargs = dict(N=50, e=0.3, k=1e9, seed=5, threads=2, realizations=60, progress=False)
+    with ctrl_c_after(1.0):
+        with pytest.raises(granchain.Interrupted):
+            granchain.collapse(db=db, **kwargs)
+    kept = sqlite3.connect(db).execute("SELECT count(*) FROM collapse_launches").fetchone()[0]
+    assert 1 <= kept < 60, "the count finished before Ctrl-C or kept nothing: the test shows nothing"
+    done = []
+    resumed = granchain.collapse(db=db, **dict(kwargs, progress=lambda d: done.append(d["done"])))
+    assert resumed.complete and resumed.stored["collapse_run_id"] > 0
+    whole = granchain.collapse(**kwargs)
+    assert resumed.per_realization.n_tot.tolist() == whole.per_realization.n_tot.tolist()
+    assert resumed.per_realization.t_stop.tolist() == whole.per_realization.t_stop.tolist()
+    assert resumed.n_tot == whole.n_tot and resumed.n_tot_err == whole.n_tot_err
+    assert sqlite3.connect(db).execute("SELECT count(*) FROM collapse_launches").fetchone()[0] == 0
+
+
 def test_a_count_is_a_record_with_a_short_repr():
     r = granchain.collapse(N=3, e=0.05, k=1e6, realizations=20, progress=False)
     assert isinstance(r, dict) and r.n_tot == r["n_tot"] and r.parameters.N == 3
