@@ -64,6 +64,7 @@ CollapseRequest collapse_request_checked(const py::kwargs& kwargs) {
       throw InputError(fmt::format("record_collisions = {} is not True or False", std::string(py::repr(*record))));
     q.record = record->cast<bool>();
   }
+  if (!q.db.empty()) check_storable(q.spec);
   return q;
 }
 
@@ -181,8 +182,10 @@ py::dict collapse(const py::kwargs& kwargs) {
   const auto work = [&] {
     CollisionLog log;
     if (q.record) log = [&recs](const std::vector<CollisionRecord>& r) { recs.insert(recs.end(), r.begin(), r.end()); };
-    const LaunchProgress on_launch = [&](int done, std::uint64_t c) {
-      launches_done = done;
+    // Progress counts launches done, those carried over from an earlier sitting included (they are
+    // not reported one by one, and launches finish out of order).
+    const LaunchProgress on_launch = [&](int, std::uint64_t c) {
+      ++launches_done;
       collisions += c;
     };
     if (q.db.empty() || q.record) {
@@ -191,7 +194,8 @@ py::dict collapse(const py::kwargs& kwargs) {
       return;
     }
     // With a store and no records the count is carried over sittings (ResultsStore::launch_checkpoint):
-    // an interrupted count keeps its launches there, and the same call continues from them.
+    // an interrupted count keeps its launches there, and the same call continues from them. A count
+    // stored whole already is stored again as the same row (insert_collapse).
     ResultsStore store(q.db);
     const LaunchCheckpoint checkpoint = store.launch_checkpoint(q.spec);
     launches_done = static_cast<int>(checkpoint.done.size());

@@ -2,6 +2,7 @@
 #include "sweep/sweep_progress.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <chrono>
 #include <unistd.h>
 
@@ -11,11 +12,13 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "config/input_error.hpp"
 #include "provenance.hpp"
+#include "version.hpp"
 #include "cli/interrupt_message.hpp"
 #include "store/output_file.hpp"
 #include "config/collapse_options.hpp"
@@ -106,7 +109,10 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     opts = resolve_collapse_options(raw);
     check_outputs({{"--db", o.no_db ? "" : o.db_path}, {"--events", o.events_path},
                    {"--json", json_requested && !json_stdout ? o.json_path : ""}}, {});
-    if (!o.no_db) ResultsStore::preflight(o.db_path);
+    if (!o.no_db) {
+      check_storable(opts.base);
+      ResultsStore::preflight(o.db_path);
+    }
   } catch (const InputError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;
@@ -134,22 +140,24 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   }
   // With a store (and no event file, which needs every launch run now) each count is carried over
   // sittings: its launches are kept in the store as they finish, a count stored whole is read
-  // back, and a rerun of the same command continues where the last one stopped.
-  const bool db_existed = !o.no_db && std::filesystem::exists(o.db_path, fs_error);
-  std::optional<ResultsStore> store;
-  if (!o.no_db && o.events_path.empty()) store.emplace(o.db_path);
-  announce_on_interrupt(store ? fmt::format("the counts did not finish; the launches counted are kept in {} (table "
-                                            "collapse_launches) and the same command continues from them; nothing else "
-                                            "was written", o.db_path)
+  // back, and a rerun of the same command continues where the last one stopped. The store is read
+  // read-only until the first launch is kept or the first count stored (`writer`).
+  const bool carry = !o.no_db && o.events_path.empty();
+  std::shared_ptr<ResultsStore> writer;
+  std::optional<ResultsStore> reader;
+  try {
+    if (carry && std::filesystem::exists(o.db_path, fs_error)) reader.emplace(o.db_path, ResultsStore::Access::ReadOnly);
+  } catch (const StoreError& e) {
+    fmt::print(stderr, "granchain: error: {}\n", e.what());
+    return kExitStoreFailed;
+  }
+  announce_on_interrupt(carry ? fmt::format("the counts did not finish; the launches that finished are kept in {} (table "
+                                            "collapse_launches; those under way are lost) and the same command continues "
+                                            "from them; nothing else was written", o.db_path)
                               : "the counts did not finish; nothing was stored or written",
                         events_tmp);
   auto remove_tmp = [&] {
     if (!events_tmp.empty()) std::filesystem::remove(events_tmp);
-    // A store this command created and left without a count or a kept launch is not left behind.
-    if (store && !db_existed && store->empty()) {
-      store.reset();
-      std::filesystem::remove(o.db_path, fs_error);
-    }
   };
 
   if (!o.quiet && !json_stdout) {
@@ -161,6 +169,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     std::fflush(stdout);
   }
   std::vector<CollapseResult> results;
+  std::vector<std::optional<nlohmann::json>> read_back_json;  // per count: its stored JSON, if read back
   std::vector<KSlope> slopes;
   // Progress over all launches of all points: a line rewritten on a terminal (unless --quiet), or
   // plain lines every 10 s with --progress (a batch job's log).
@@ -180,8 +189,8 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   for (double e : es)
     for (double k : ks) {
       const CollapseSpec spec = point_spec(e, k);
-      if (store && store->find_collapse(spec)) continue;
-      total_launches += static_cast<std::size_t>(base.realizations - (store ? store->kept_launches(spec) : 0));
+      if (reader && reader->find_collapse(spec)) continue;
+      total_launches += static_cast<std::size_t>(base.realizations) - (reader ? reader->kept_launches(spec).done.size() : 0);
     }
   std::size_t launches_done = 0;
   std::uint64_t collisions_done = 0;
@@ -219,17 +228,22 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
             }
           };
         }
-        std::optional<CollapseResult> stored_count = store ? store->find_collapse(spec) : std::nullopt;
-        int carried = 0;
+        std::optional<CollapseResult> stored_count = reader ? reader->find_collapse(spec) : std::nullopt;
+        std::size_t carried = 0;
+        std::set<std::string> carried_versions;
         if (stored_count) {
           stored_count->spec.threads = spec.threads;
           results.push_back(*stored_count);
-        } else if (store) {
-          const LaunchCheckpoint checkpoint = store->launch_checkpoint(spec);
-          carried = static_cast<int>(checkpoint.done.size());
+          read_back_json.push_back(reader->stored_collapse_json(spec));
+        } else if (carry) {
+          const LaunchCheckpoint checkpoint = ResultsStore::lazy_launch_checkpoint(o.db_path, spec, writer);
+          carried = checkpoint.done.size();
+          if (carried > 0 && reader) carried_versions = reader->kept_launches(spec).code_versions;
           results.push_back(run_collapse(spec, log, on_launch, {}, nullptr, &checkpoint));
+          read_back_json.push_back(std::nullopt);
         } else {
           results.push_back(run_collapse(spec, log, on_launch));
+          read_back_json.push_back(std::nullopt);
         }
         const CollapseResult& r = results.back();
         if (show_progress && tty) fmt::print(stderr, "\r{:<100}\r", "");  // the table row replaces the progress line
@@ -240,8 +254,11 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
           if (stored_count)
             fmt::print("{:>19} (stored in {}: read back, not counted again)\n", "", o.db_path);
           else if (carried > 0)
-            fmt::print("{:>19} ({} of {} launches carried over from an earlier sitting, kept in {})\n", "", carried,
-                       base.realizations, o.db_path);
+            fmt::print("{:>19} ({} of {} launches carried over from an earlier sitting, kept in {}{})\n", "", carried,
+                       base.realizations, o.db_path,
+                       carried_versions.size() == 1 && *carried_versions.begin() == code_version()
+                           ? ""
+                           : fmt::format("; counted by code version {}, this is {}", fmt::join(carried_versions, ", "), code_version()));
           if (r.grazing_contacts > 0)
             fmt::print("{:>19} ({} of {} collisions began below the engine's resolution, {} of them held; docs/engines.md)\n",
                        "", r.grazing_contacts, r.collisions, r.held_contacts);
@@ -256,13 +273,20 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     if (show_progress) report(true);
   } catch (const UnphysicalStateError& e) {
     remove_tmp();
-    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written\n", e.what());
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no count was stored or written{}\n", e.what(),
+               writer ? fmt::format(" (the launches that finished before it stay in {}, table collapse_launches)", o.db_path) : "");
     return kExitUnphysical;
+  } catch (const StoreError& e) {
+    remove_tmp();
+    fmt::print(stderr, "granchain: error: {}; no count was stored or written (launches kept before it stay in {})\n", e.what(),
+               o.db_path);
+    return kExitStoreFailed;
   }
 
   nlohmann::json j;
   j["points"] = nlohmann::json::array();
-  for (const CollapseResult& r : results) j["points"].push_back(collapse_result_to_json(r));
+  for (std::size_t i = 0; i < results.size(); ++i)
+    j["points"].push_back(read_back_json[i] ? *read_back_json[i] : collapse_result_to_json(results[i]));
   j["slopes"] = nlohmann::json::array();
   const bool three_body = N == 3 && base.setup == CollapseSetup::FreeSpace;
   if (!slopes.empty() && !o.quiet && !json_stdout) {
@@ -318,8 +342,8 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
                           events_tmp);
     std::vector<std::int64_t> ids;
     try {
-      if (!store) store.emplace(o.db_path);
-      for (const CollapseResult& r : results) ids.push_back(store->insert_collapse(r));
+      if (!writer) writer = std::make_shared<ResultsStore>(o.db_path);
+      for (const CollapseResult& r : results) ids.push_back(writer->insert_collapse(r));
       j["stored"] = {{"db", o.db_path}, {"collapse_run_ids", ids}};
       stored = fmt::format("{} rows in {} (table collapse_runs)", ids.size(), o.db_path);
     } catch (const StoreError& e) {

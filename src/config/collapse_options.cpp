@@ -215,4 +215,18 @@ CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& 
   return o;
 }
 
+void check_storable(const CollapseSpec& spec) {
+  if (!engine_info(spec.engine.kind).hard_spheres) return;
+  const HardSphereOptions def;
+  const HardSphereOptions& h = spec.engine.hard;
+  if (h.collapse_collisions != def.collapse_collisions)
+    throw InputError(fmt::format("--collapse-collisions = {}: a results store tells counts apart by their stored parameters, and the "
+                                 "collapse watch is not one; valid with a store: {} (the default), or count without one (--no-db)",
+                                 h.collapse_collisions, def.collapse_collisions));
+  if (h.collapse_time != def.collapse_time)
+    throw InputError(fmt::format("--collapse-time = {:g}: a results store tells counts apart by their stored parameters, and the "
+                                 "collapse watch is not one; valid with a store: {:g} (the default), or count without one (--no-db)",
+                                 h.collapse_time, def.collapse_time));
+}
+
 }  // namespace granchain

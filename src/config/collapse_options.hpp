@@ -34,4 +34,9 @@ struct CollapseOptions {
 // parameter and its valid range.
 CollapseOptions resolve_collapse_options(const std::map<std::string, RawValue>& raw);
 
+// A count goes into a results store by its stored parameters; the hard engine's collapse watch
+// (collapse-collisions, collapse-time) is not among them, so a count with another watch than the
+// default cannot be told apart there: InputError naming the parameter, for a count to be stored.
+void check_storable(const CollapseSpec& spec);
+
 }  // namespace granchain

@@ -28,7 +28,7 @@ std::string trajectory_key(const RunSpec& spec);
 std::string point_key_without_seed(const RunSpec& spec);
 
 // The identity of a collapse count, read off its stored parameters (config/collapse_options.hpp)
-// in their order: "collapse N=100 e=0.5 k=1e+17 engine=exact setup=free_space ... seed=1". Two
+// in their order: "collapse N=100 e=0.5 k=1e+17 engine=exact setup=free_space ... seed=1 dt_factor=100 tc=0". Two
 // counts with one key are the same launches and give identical results.
 std::string collapse_key(const CollapseSpec& spec);
 // The same from the values of the stored parameters, in their order (a row of collapse_runs).

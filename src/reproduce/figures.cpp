@@ -170,7 +170,7 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
   if (r.interrupted)
     throw TimeLimitReached(fmt::format("the time limit fell inside the free-space count N = {}, e = {:g}, k = {:g}: {} of its {} launches "
                                        "are kept in {}, and the same command continues it",
-                                       spec.params.N, spec.params.e, spec.params.k, store.kept_launches(spec), spec.realizations, o.db));
+                                       spec.params.N, spec.params.e, spec.params.k, store.kept_launches(spec).done.size(), spec.realizations, o.db));
   store.insert_collapse(r);
   return r;
 }

@@ -5,6 +5,7 @@
 #include <sqlite3.h>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <tuple>
 #include <vector>
@@ -12,6 +13,7 @@
 
 #include "config/collapse_options.hpp"
 #include "config/run_key.hpp"
+#include "model/chain_parameters.hpp"
 #include "store/collapse_json.hpp"
 #include "store/results_store.hpp"
 #include "store/sqlite_statement.hpp"
@@ -60,6 +62,7 @@ std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& sp
   find.row();
   CollapseResult r;
   r.spec = spec;
+  r.law = contact_law(spec.params);
   r.law.tau_c = find.column_double(0);
   r.n_tot_mean = find.column_double(1);
   r.n_tot_error = find.column_double(2);
@@ -69,11 +72,14 @@ std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& sp
   r.wall_seconds = find.column_double(6);
   // The contacts below the exact engine's resolution are kept in the count's JSON only.
   const nlohmann::json j = nlohmann::json::parse(find.column_text(7), nullptr, false);
-  if (j.is_object() && j.contains("observables")) {
+  if (j.is_object() && j.contains("observables") && j["observables"].is_object()) {
     const nlohmann::json& obs = j["observables"];
-    r.grazing_contacts = obs.value("grazing_contacts", std::uint64_t{0});
-    r.held_contacts = obs.value("held_contacts", std::uint64_t{0});
-    r.one_body = obs.value("one_body", 0);
+    const auto count = [&](const char* name) -> std::uint64_t {
+      return obs.contains(name) && obs[name].is_number_unsigned() ? obs[name].get<std::uint64_t>() : 0;
+    };
+    r.grazing_contacts = count("grazing_contacts");
+    r.held_contacts = count("held_contacts");
+    r.one_body = static_cast<int>(count("one_body"));
   }
   SqlStatement real(db_, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_realizations WHERE run_id = ? ORDER BY realization");
   real.bind(1, *id);
@@ -83,11 +89,23 @@ std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& sp
     o.wall_hits = static_cast<std::uint64_t>(real.column_int(1));
     o.collapsed = real.column_int(2) != 0;
     o.t_stop = real.column_double(3);
-    r.collisions += o.particle_collisions;
+    r.collisions += o.n_tot();
     r.outcomes.push_back(o);
   }
   if (static_cast<int>(r.outcomes.size()) != spec.realizations) return std::nullopt;  // an incomplete row is not the count
   return r;
+}
+
+std::optional<nlohmann::json> ResultsStore::stored_collapse_json(const CollapseSpec& spec) {
+  const std::optional<std::int64_t> id = stored_collapse_id(db_, spec);
+  if (!id) return std::nullopt;
+  SqlStatement row(db_, "SELECT result_json FROM collapse_runs WHERE id = ?");
+  row.bind(1, *id);
+  if (!row.row()) return std::nullopt;
+  nlohmann::json j = nlohmann::json::parse(row.column_text(0), nullptr, false);
+  if (!j.is_object()) return std::nullopt;
+  j["read_back"] = {{"collapse_run_id", *id}};
+  return j;
 }
 
 std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
@@ -138,20 +156,13 @@ std::int64_t ResultsStore::insert_collapse(const CollapseResult& r) {
   });
 }
 
-int ResultsStore::kept_launches(const CollapseSpec& spec) {
-  if (!has_table(db_, "collapse_launches")) return 0;
-  SqlStatement n(db_, "SELECT count(*) FROM collapse_launches WHERE count_key = ? AND realization < ?");
-  n.bind(1, collapse_key(spec));
-  n.bind(2, static_cast<std::int64_t>(spec.realizations));
-  n.row();
-  return static_cast<int>(n.column_int(0));
-}
-
-LaunchCheckpoint ResultsStore::launch_checkpoint(const CollapseSpec& spec) {
+ResultsStore::KeptLaunches ResultsStore::kept_launches(const CollapseSpec& spec) {
+  KeptLaunches k;
+  if (!has_table(db_, "collapse_launches")) return k;
   const std::string key = collapse_key(spec);
-  LaunchCheckpoint c;
   SqlStatement kept(db_, "SELECT realization, particle_collisions, wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, "
-                         "one_body, seconds FROM collapse_launches WHERE count_key = ? AND realization < ? ORDER BY realization");
+                         "one_body, seconds, code_version FROM collapse_launches WHERE count_key = ? AND realization >= 0 AND "
+                         "realization < ? ORDER BY realization");
   kept.bind(1, key);
   kept.bind(2, static_cast<std::int64_t>(spec.realizations));
   while (kept.row()) {
@@ -164,69 +175,98 @@ LaunchCheckpoint ResultsStore::launch_checkpoint(const CollapseSpec& spec) {
     o.held_contacts = static_cast<std::uint64_t>(kept.column_int(6));
     o.one_body = kept.column_int(7) != 0;
     o.seconds = kept.column_double(8);
-    c.done[static_cast<int>(kept.column_int(0))] = o;
+    k.done[static_cast<int>(kept.column_int(0))] = o;
+    k.code_versions.insert(kept.column_text(9));
   }
-  // Each earlier sitting's wall time up to the last launch it kept (what it spent on launches lost
-  // to its interruption is not counted).
   SqlStatement spent(db_, "SELECT total(m) FROM (SELECT max(sitting_seconds) AS m FROM collapse_launches WHERE count_key = ? "
                           "GROUP BY sitting)");
   spent.bind(1, key);
   spent.row();
-  c.earlier_seconds = spent.column_double(0);
-  // Launches are written in batches, one transaction at most every second (a commit costs a few
-  // milliseconds, more than a short launch): a process killed outright loses at most the last
-  // second's launches; run_collapse flushes the rest before it returns.
+  k.earlier_seconds = spent.column_double(0);
+  return k;
+}
+
+void ResultsStore::write_kept_launches(const std::string& key, const std::string& sitting, const std::vector<KeptLaunch>& launches) {
+  in_transaction([&] {
+    SqlStatement add(db_, "INSERT OR IGNORE INTO collapse_launches(count_key, realization, created_utc, code_version, sitting, "
+                          "sitting_seconds, particle_collisions, wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, "
+                          "one_body, seconds) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
+    const std::string now = utc_now();
+    for (const KeptLaunch& l : launches) {
+      const RealizationOutcome& o = l.outcome;
+      int i = 1;
+      add.bind(i++, key);
+      add.bind(i++, static_cast<std::int64_t>(l.realization));
+      add.bind(i++, now);
+      add.bind(i++, std::string(code_version()));
+      add.bind(i++, sitting);
+      add.bind(i++, l.sitting_seconds);
+      add.bind(i++, static_cast<std::int64_t>(o.particle_collisions));
+      add.bind(i++, static_cast<std::int64_t>(o.wall_hits));
+      add.bind(i++, static_cast<std::int64_t>(o.collapsed));
+      add.bind(i++, o.t_stop);
+      add.bind(i++, static_cast<std::int64_t>(o.grazing_contacts));
+      add.bind(i++, static_cast<std::int64_t>(o.held_contacts));
+      add.bind(i++, static_cast<std::int64_t>(o.one_body));
+      add.bind(i++, o.seconds);
+      add.run();
+    }
+    return std::int64_t{0};
+  });
+}
+
+namespace {
+
+// The writing half of a checkpoint: `finished` and `flush` over the store that `writer()` gives.
+void keep_through(LaunchCheckpoint& c, const std::string& key, const std::function<ResultsStore&()>& writer) {
   struct Pending {
-    std::vector<std::tuple<int, RealizationOutcome, double>> launches;  // realization, outcome, sitting seconds
+    std::vector<ResultsStore::KeptLaunch> launches;
     std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now(), written = started;
+    // A sitting: this process from this instant (to the nanosecond), so that two never share a name.
+    std::string sitting = fmt::format("{} pid {}", std::chrono::system_clock::now().time_since_epoch().count(), getpid());
   };
   auto pending = std::make_shared<Pending>();
-  const std::string sitting = fmt::format("{} pid {}", utc_now(), getpid());
-  c.flush = [this, key, sitting, pending] {
+  c.flush = [key, writer, pending] {
     if (pending->launches.empty()) return;
-    in_transaction([&] {
-      SqlStatement add(db_, "INSERT OR IGNORE INTO collapse_launches(count_key, realization, created_utc, code_version, sitting, "
-                            "sitting_seconds, particle_collisions, wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, "
-                            "one_body, seconds) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
-      const std::string now = utc_now();
-      for (const auto& [r, o, at] : pending->launches) {
-        int i = 1;
-        add.bind(i++, key);
-        add.bind(i++, static_cast<std::int64_t>(r));
-        add.bind(i++, now);
-        add.bind(i++, std::string(code_version()));
-        add.bind(i++, sitting);
-        add.bind(i++, at);
-        add.bind(i++, static_cast<std::int64_t>(o.particle_collisions));
-        add.bind(i++, static_cast<std::int64_t>(o.wall_hits));
-        add.bind(i++, static_cast<std::int64_t>(o.collapsed));
-        add.bind(i++, o.t_stop);
-        add.bind(i++, static_cast<std::int64_t>(o.grazing_contacts));
-        add.bind(i++, static_cast<std::int64_t>(o.held_contacts));
-        add.bind(i++, static_cast<std::int64_t>(o.one_body));
-        add.bind(i++, o.seconds);
-        add.run();
-      }
-      return std::int64_t{0};
-    });
+    writer().write_kept_launches(key, pending->sitting, pending->launches);
     pending->launches.clear();
     pending->written = std::chrono::steady_clock::now();
   };
   c.finished = [pending, flush = c.flush](int r, const RealizationOutcome& o) {
     const auto now = std::chrono::steady_clock::now();
-    pending->launches.emplace_back(r, o, std::chrono::duration<double>(now - pending->started).count());
-    if (now - pending->written >= std::chrono::seconds(1)) flush();
+    pending->launches.push_back({r, o, std::chrono::duration<double>(now - pending->started).count()});
+    if (o.seconds >= 0.1 || now - pending->written >= std::chrono::seconds(1)) flush();
   };
+}
+
+LaunchCheckpoint continuing(ResultsStore::KeptLaunches kept) {
+  LaunchCheckpoint c;
+  c.done = std::move(kept.done);
+  c.earlier_seconds = kept.earlier_seconds;
   return c;
 }
 
-bool ResultsStore::empty() {
-  for (const char* table : {"runs", "collapse_runs", "collapse_launches", "collapsed_points"}) {
-    if (!has_table(db_, table)) continue;
-    SqlStatement any(db_, fmt::format("SELECT 1 FROM {} LIMIT 1", table).c_str());
-    if (any.row()) return false;
+}  // namespace
+
+LaunchCheckpoint ResultsStore::launch_checkpoint(const CollapseSpec& spec) {
+  LaunchCheckpoint c = continuing(kept_launches(spec));
+  keep_through(c, collapse_key(spec), [this]() -> ResultsStore& { return *this; });
+  return c;
+}
+
+LaunchCheckpoint ResultsStore::lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec,
+                                                      std::shared_ptr<ResultsStore>& writer) {
+  LaunchCheckpoint c;
+  if (writer) {
+    c = continuing(writer->kept_launches(spec));
+  } else if (std::filesystem::exists(path)) {
+    c = continuing(ResultsStore(path, Access::ReadOnly).kept_launches(spec));
   }
-  return true;
+  keep_through(c, collapse_key(spec), [&writer, path]() -> ResultsStore& {
+    if (!writer) writer = std::make_shared<ResultsStore>(path);
+    return *writer;
+  });
+  return c;
 }
 
 }  // namespace granchain

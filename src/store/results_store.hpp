@@ -7,9 +7,12 @@
 #include <functional>
 #include <stdexcept>
 #include <map>
+#include <memory>
+#include <set>
 #include <optional>
 #include <string>
 #include <unordered_set>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -134,18 +137,38 @@ class ResultsStore {
   // or nothing. The contacts below the exact engine's resolution are read from the count's JSON
   // (totals only; 0 per launch).
   std::optional<CollapseResult> find_collapse(const CollapseSpec& spec);
-  // A count carried over sittings: its launches kept in collapse_launches by collapse_key(spec) as
-  // they finish (batched, a transaction at most every second), so that a count stopped anywhere (a
-  // signal, a batch job's walltime, a Python interrupt) continues from them when run again; insert_collapse
-  // deletes them once the whole count is stored. The checkpoint writes through this store, which
-  // must outlive it. Launches are matched by the count's definition, not by code version (as
-  // stored counts are).
+  // The stored count's JSON as it was written when it was counted (its code version, provenance and
+  // cost), with "read_back": {"collapse_run_id": id} added; nothing if not stored.
+  std::optional<nlohmann::json> stored_collapse_json(const CollapseSpec& spec);
+  // A count carried over sittings: its launches are kept in collapse_launches by
+  // collapse_key(spec) as they finish, so that a count stopped anywhere (a signal, a batch job's
+  // walltime, a Python interrupt) continues from them when run again; insert_collapse deletes them
+  // once the whole count is stored. Launches are matched by the count's definition, not by code
+  // version (as stored counts are); the versions that counted them are reported.
+  struct KeptLaunches {
+    std::map<int, RealizationOutcome> done;
+    double earlier_seconds = 0;              // each earlier sitting's wall time up to its last kept launch
+    std::set<std::string> code_versions;     // of the sittings that counted them
+  };
+  // What is kept of this count (nothing for a store without the table; a read-only store serves).
+  KeptLaunches kept_launches(const CollapseSpec& spec);
+  // A checkpoint that continues from what is kept and keeps each new launch through this store,
+  // which must outlive it. A launch that took 0.1 s or more is written at once, shorter ones in
+  // batches at most a second apart (a commit costs milliseconds): a process killed outright loses
+  // the launch it was writing and at most about a second of short launches per thread.
   LaunchCheckpoint launch_checkpoint(const CollapseSpec& spec);
-  // How many launches of this count are kept (0 for a store without the table).
-  int kept_launches(const CollapseSpec& spec);
+  // The same over the store at `path`, opened for writing (into `writer`) only when the first launch
+  // is kept: a count that keeps nothing creates no store and leaves an existing one unchanged.
+  static LaunchCheckpoint lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec,
+                                                 std::shared_ptr<ResultsStore>& writer);
+  // One kept launch as written: its realisation, outcome and the seconds into its sitting.
+  struct KeptLaunch {
+    int realization = 0;
+    RealizationOutcome outcome;
+    double sitting_seconds = 0;
+  };
+  void write_kept_launches(const std::string& key, const std::string& sitting, const std::vector<KeptLaunch>& launches);
   std::int64_t count_runs();
-  // No run, count, kept launch or collapsed point: a store as it was created.
-  bool empty();
   sqlite3* handle() { return db_; }
 
  private:

@@ -324,8 +324,8 @@ void merge_kept_launches(sqlite3* target, sqlite3* source, const std::string& so
   const char* columns = "count_key, realization, created_utc, code_version, sitting, sitting_seconds, particle_collisions, "
                         "wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, one_body, seconds";
   SqlStatement rows(source, fmt::format("SELECT {} FROM collapse_launches ORDER BY count_key, realization", columns).c_str());
-  SqlStatement there(target, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_launches WHERE count_key = ? AND "
-                             "realization = ?");
+  SqlStatement there(target, "SELECT particle_collisions, wall_hits, collapsed, t_stop, grazing_contacts, held_contacts, one_body "
+                             "FROM collapse_launches WHERE count_key = ? AND realization = ?");
   SqlStatement insert(target, fmt::format("INSERT INTO collapse_launches({}) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)", columns).c_str());
   while (rows.row()) {
     if (whole.count(rows.column_text(0)) > 0) {
@@ -335,8 +335,8 @@ void merge_kept_launches(sqlite3* target, sqlite3* source, const std::string& so
     there.bind_value(1, rows.column_value(0));
     there.bind_value(2, rows.column_value(1));
     if (there.row()) {
-      const bool same = there.column_int(0) == rows.column_int(6) && there.column_int(1) == rows.column_int(7) &&
-                        there.column_int(2) == rows.column_int(8) && there.column_double(3) == rows.column_double(9);
+      bool same = there.column_double(3) == rows.column_double(9);  // t_stop; the counts below
+      for (int c : {0, 1, 2, 4, 5, 6}) same = same && there.column_int(c) == rows.column_int(c + 6);
       there.reset();
       if (!same)
         throw MergeConflict(fmt::format("merge: conflicting launches: launch {} of '{}' differs between '{}' and '{}'; nothing was merged",
