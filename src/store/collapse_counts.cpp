@@ -39,6 +39,17 @@ std::optional<std::int64_t> stored_collapse_id(sqlite3* db, const CollapseSpec& 
   return find.column_int(0);
 }
 
+// The counts of one launch as both tables keep them: particle_collisions, wall_hits, collapsed and
+// t_stop in the columns first .. first + 3 of a row.
+RealizationOutcome launch_counts(SqlStatement& row, int first) {
+  RealizationOutcome o;
+  o.particle_collisions = static_cast<std::uint64_t>(row.column_int(first));
+  o.wall_hits = static_cast<std::uint64_t>(row.column_int(first + 1));
+  o.collapsed = row.column_int(first + 2) != 0;
+  o.t_stop = row.column_double(first + 3);
+  return o;
+}
+
 bool has_table(sqlite3* db, const char* name) {
   SqlStatement has(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = ?");
   has.bind(1, std::string(name));
@@ -84,11 +95,7 @@ std::optional<CollapseResult> ResultsStore::find_collapse(const CollapseSpec& sp
   SqlStatement real(db_, "SELECT particle_collisions, wall_hits, collapsed, t_stop FROM collapse_realizations WHERE run_id = ? ORDER BY realization");
   real.bind(1, *id);
   while (real.row()) {
-    RealizationOutcome o;
-    o.particle_collisions = static_cast<std::uint64_t>(real.column_int(0));
-    o.wall_hits = static_cast<std::uint64_t>(real.column_int(1));
-    o.collapsed = real.column_int(2) != 0;
-    o.t_stop = real.column_double(3);
+    const RealizationOutcome o = launch_counts(real, 0);
     r.collisions += o.n_tot();
     r.outcomes.push_back(o);
   }
@@ -166,11 +173,7 @@ ResultsStore::KeptLaunches ResultsStore::kept_launches(const CollapseSpec& spec)
   kept.bind(1, key);
   kept.bind(2, static_cast<std::int64_t>(spec.realizations));
   while (kept.row()) {
-    RealizationOutcome o;
-    o.particle_collisions = static_cast<std::uint64_t>(kept.column_int(1));
-    o.wall_hits = static_cast<std::uint64_t>(kept.column_int(2));
-    o.collapsed = kept.column_int(3) != 0;
-    o.t_stop = kept.column_double(4);
+    RealizationOutcome o = launch_counts(kept, 1);
     o.grazing_contacts = static_cast<std::uint64_t>(kept.column_int(5));
     o.held_contacts = static_cast<std::uint64_t>(kept.column_int(6));
     o.one_body = kept.column_int(7) != 0;
