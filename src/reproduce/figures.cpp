@@ -165,8 +165,34 @@ CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceF
   const LaunchCheckpoint checkpoint = store.launch_checkpoint(spec);
   if (!o.quiet && !checkpoint.done.empty())
     fmt::print(stderr, "reproduce {}: {} of {} launches carried over from an earlier sitting\n", label, checkpoint.done.size(), spec.realizations);
+  // Progress over the launches counted now (a line rewritten on a terminal, a plain line every 10 s
+  // in a batch job's log), as `granchain collapse` prints it.
+  LaunchProgress progress;
+  const auto started = std::chrono::steady_clock::now();
+  auto last = started;
+  std::size_t done = 0;
+  std::uint64_t collisions = 0;
+  const std::size_t to_count = static_cast<std::size_t>(spec.realizations) - checkpoint.done.size();
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const SweepProgressPrinter printer(tty, "reproduce " + label, "launches");
+  if (!o.quiet)
+    progress = [&](int, std::uint64_t c) {
+      ++done;
+      collisions += c;
+      const auto now = std::chrono::steady_clock::now();
+      if (done < to_count && std::chrono::duration<double>(now - last).count() < (tty ? 0.5 : 10.0)) return;
+      last = now;
+      SweepProgress p;
+      p.done = done;
+      p.total = to_count;
+      p.elapsed = std::chrono::duration<double>(now - started).count();
+      p.eta = p.elapsed / static_cast<double>(done) * static_cast<double>(to_count - done);
+      p.collisions_per_second = p.elapsed > 0 ? static_cast<double>(collisions) / p.elapsed : 0.0;
+      p.final = done == to_count;
+      printer(p);
+    };
   Deadline deadline(o.time_left());
-  const CollapseResult r = run_collapse(spec, {}, {}, {}, &deadline.passed, &checkpoint);
+  const CollapseResult r = run_collapse(spec, {}, progress, {}, &deadline.passed, &checkpoint);
   if (r.interrupted)
     throw TimeLimitReached(fmt::format("the time limit fell inside the free-space count N = {}, e = {:g}, k = {:g}: {} of its {} launches "
                                        "are kept in {}, and the same command continues it",
