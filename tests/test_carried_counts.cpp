@@ -247,3 +247,11 @@ TEST_F(CarriedCountCli, ATimeLimitInsideACountKeepsItsLaunches) {
   }
   EXPECT_TRUE(inside) << "no limit fell inside a count: the test shows nothing";
 }
+
+// An empty file is a store awaiting its first writer: a count goes into it as into a new one.
+TEST_F(CarriedCountCli, AnEmptyFileTakesTheCount) {
+  write("empty.db", "");
+  const CliResult r = run("collapse --N 3 --e 0.05 --k 1e6 --realizations 4 --db empty.db -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(query(dir_ / "empty.db", "SELECT count(*) FROM collapse_runs"), 1);
+}

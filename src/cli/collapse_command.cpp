@@ -146,7 +146,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
   std::shared_ptr<ResultsStore> writer;
   std::optional<ResultsStore> reader;
   try {
-    if (carry && std::filesystem::exists(o.db_path, fs_error)) reader.emplace(o.db_path, ResultsStore::Access::ReadOnly);
+    if (carry && ResultsStore::holds_a_store(o.db_path)) reader.emplace(o.db_path, ResultsStore::Access::ReadOnly);
   } catch (const StoreError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitStoreFailed;

@@ -262,7 +262,7 @@ LaunchCheckpoint ResultsStore::lazy_launch_checkpoint(const std::string& path, c
   LaunchCheckpoint c;
   if (writer) {
     c = continuing(writer->kept_launches(spec));
-  } else if (std::filesystem::exists(path)) {
+  } else if (holds_a_store(path)) {
     c = continuing(ResultsStore(path, Access::ReadOnly).kept_launches(spec));
   }
   keep_through(c, collapse_key(spec), [&writer, path]() -> ResultsStore& {
@@ -270,6 +270,16 @@ LaunchCheckpoint ResultsStore::lazy_launch_checkpoint(const std::string& path, c
     return *writer;
   });
   return c;
+}
+
+bool ResultsStore::holds_a_store(const std::string& path) {
+  if (!std::filesystem::exists(path)) return false;
+  try {
+    preflight(path, Access::ReadOnly, "--db");
+    return true;
+  } catch (const StoreError&) {
+    return false;
+  }
 }
 
 }  // namespace granchain

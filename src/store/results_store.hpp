@@ -161,6 +161,9 @@ class ResultsStore {
   // is kept: a count that keeps nothing creates no store and leaves an existing one unchanged.
   static LaunchCheckpoint lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec,
                                                  std::shared_ptr<ResultsStore>& writer);
+  // Whether `path` holds a store that can be read (not missing, not an empty database awaiting its
+  // first writer).
+  static bool holds_a_store(const std::string& path);
   // One kept launch as written: its realisation, outcome and the seconds into its sitting.
   struct KeptLaunch {
     int realization = 0;
