@@ -185,12 +185,17 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
     spec.params.k = k;
     return spec;
   };
+  // What the store holds of each point, in list order, read once: the count stored whole, or the
+  // launches kept of it.
+  std::vector<std::optional<CollapseResult>> stored_counts;
+  std::vector<ResultsStore::KeptLaunches> kept;
   std::size_t total_launches = 0;
   for (double e : es)
     for (double k : ks) {
       const CollapseSpec spec = point_spec(e, k);
-      if (reader && reader->find_collapse(spec)) continue;
-      total_launches += static_cast<std::size_t>(base.realizations) - (reader ? reader->kept_launches(spec).done.size() : 0);
+      stored_counts.push_back(reader ? reader->find_collapse(spec) : std::nullopt);
+      kept.push_back(reader && !stored_counts.back() ? reader->kept_launches(spec) : ResultsStore::KeptLaunches{});
+      if (!stored_counts.back()) total_launches += static_cast<std::size_t>(base.realizations) - kept.back().done.size();
     }
   std::size_t launches_done = 0;
   std::uint64_t collisions_done = 0;
@@ -228,17 +233,16 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
             }
           };
         }
-        std::optional<CollapseResult> stored_count = reader ? reader->find_collapse(spec) : std::nullopt;
-        std::size_t carried = 0;
-        std::set<std::string> carried_versions;
+        const std::size_t point = results.size();
+        std::optional<CollapseResult>& stored_count = stored_counts[point];
+        const std::size_t carried = kept[point].done.size();
+        const std::set<std::string>& carried_versions = kept[point].code_versions;
         if (stored_count) {
           stored_count->spec.threads = spec.threads;
           results.push_back(*stored_count);
           read_back_json.push_back(reader->stored_collapse_json(spec));
         } else if (carry) {
-          const LaunchCheckpoint checkpoint = ResultsStore::lazy_launch_checkpoint(o.db_path, spec, writer);
-          carried = checkpoint.done.size();
-          if (carried > 0 && reader) carried_versions = reader->kept_launches(spec).code_versions;
+          const LaunchCheckpoint checkpoint = ResultsStore::lazy_launch_checkpoint(o.db_path, spec, std::move(kept[point]), writer);
           results.push_back(run_collapse(spec, log, on_launch, {}, nullptr, &checkpoint));
           read_back_json.push_back(std::nullopt);
         } else {

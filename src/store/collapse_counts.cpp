@@ -257,14 +257,9 @@ LaunchCheckpoint ResultsStore::launch_checkpoint(const CollapseSpec& spec) {
   return c;
 }
 
-LaunchCheckpoint ResultsStore::lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec,
+LaunchCheckpoint ResultsStore::lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec, KeptLaunches kept,
                                                       std::shared_ptr<ResultsStore>& writer) {
-  LaunchCheckpoint c;
-  if (writer) {
-    c = continuing(writer->kept_launches(spec));
-  } else if (holds_a_store(path)) {
-    c = continuing(ResultsStore(path, Access::ReadOnly).kept_launches(spec));
-  }
+  LaunchCheckpoint c = continuing(std::move(kept));
   keep_through(c, collapse_key(spec), [&writer, path]() -> ResultsStore& {
     if (!writer) writer = std::make_shared<ResultsStore>(path);
     return *writer;

@@ -157,9 +157,10 @@ class ResultsStore {
   // batches at most a second apart (a commit costs milliseconds): a process killed outright loses
   // the launch it was writing and at most about a second of short launches per thread.
   LaunchCheckpoint launch_checkpoint(const CollapseSpec& spec);
-  // The same over the store at `path`, opened for writing (into `writer`) only when the first launch
-  // is kept: a count that keeps nothing creates no store and leaves an existing one unchanged.
-  static LaunchCheckpoint lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec,
+  // The same from launches already read (kept_launches) over the store at `path`, opened for writing
+  // (into `writer`) only when the first launch is kept: a count that keeps nothing creates no store
+  // and leaves an existing one unchanged.
+  static LaunchCheckpoint lazy_launch_checkpoint(const std::string& path, const CollapseSpec& spec, KeptLaunches kept,
                                                  std::shared_ptr<ResultsStore>& writer);
   // Whether `path` holds a store that can be read (not missing, not an empty database awaiting its
   // first writer).
