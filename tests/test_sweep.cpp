@@ -5,14 +5,17 @@
 #include <sqlite3.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "config/input_error.hpp"
 #include "config/run_key.hpp"
+#include "reproduce/store_analysis.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
 #include "store/store_export.hpp"
 #include "store/store_merge.hpp"
+#include "sweep/cost_model.hpp"
 #include "sweep/sweep_grid.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "temp_dir.hpp"
@@ -285,6 +288,36 @@ TEST(SweepStore, PointsAreStoredOnceMergedOnceAndConflictsRefused) {
   EXPECT_FALSE(fs::exists(fresh)) << "a failed merge must leave no new file";
   EXPECT_THROW(merge_stores(all, {dir.file("c.db")}), MergeConflict);
   EXPECT_EQ(count(all, "SELECT count(*) FROM runs"), static_cast<std::int64_t>(points.size()));
+}
+
+// The reports' cost table: each stored run's CPU time beside the cost model's prediction for the
+// same run, summed per N, with the geometric mean of the ratios.
+TEST(SweepStore, CostTableSetsEachRunsCpuTimeBesideTheModelsPrediction) {
+  TempDir dir;
+  const auto points = build_sweep_points(small_grid());
+  const auto results = run_points(points, 2);
+  const std::string db = dir.file("a.db");
+  {
+    ResultsStore s(db);
+    for (const SweepPoint& p : points) s.insert_sweep_point(results.at(p.key), p.key, 1, p.replica);
+  }
+  const StoreAnalysis a = analyze_store(db, ExportSelection{}, 1e3);
+  ASSERT_EQ(a.costs.size(), points.size());
+  std::map<int, double> predicted;
+  for (const SweepPoint& p : points) predicted[p.spec.params.N] += estimate_cost_seconds(p.spec);
+  std::map<int, double> stored;
+  for (const RunCost& c : a.costs) {
+    EXPECT_GT(c.seconds, 0);
+    stored[c.N] += c.predicted;
+  }
+  for (const auto& [N, sec] : predicted) EXPECT_NEAR(stored[N], sec, 1e-9 * sec) << "N = " << N;
+
+  // The arithmetic: N = 50 runs at twice and half their prediction (sums 1.25, geometric mean 1,
+  // both within 2); N = 200 at three times (outside); a run without a time is left out.
+  const std::string md = cost_markdown({{50, 7200, 3600}, {50, 1800, 3600}, {200, 10800, 3600}, {200, 0, 3600}});
+  EXPECT_NE(md.find("| 50 | 2 | 2.5 | 2 | 1.25 | 1.00 | 2 of 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 200 | 1 | 3 | 1 | 3.00 | 3.00 | 0 of 1 |"), std::string::npos) << md;
+  EXPECT_EQ(cost_markdown({}), "");
 }
 
 TEST(SweepStore, ExportSelectsByValueEngineAndCondition) {

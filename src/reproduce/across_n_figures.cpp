@@ -158,6 +158,11 @@ FigureOutcome reproduce_bifurcation(const ReproduceFlags& o, ReproductionLog& lo
                   "error; e_c2 (convex by 2 errors / not) likewise with its half-width.";
   out.markdown += "\nThe partially condensed state is flagged where K_i rises above its dip near the floor by more than 3 standard "
                   "errors (docs/analysis.md), in the profiles at the largest k; the paper's shaded region has its upper e near e_c1.\n";
+  const std::string cost = cost_markdown(s.a.costs);
+  if (!cost.empty())
+    out.markdown += "\nWhat the stored runs cost, per N: their CPU time (the thread's, as stored) beside the cost model's prediction "
+                    "for the same runs (sweep/cost_model.hpp, the estimate `--print-sweeps` and `sweep --dry-run` give; calibrated on "
+                    "one core of the development machine):\n\n" + cost;
   out.markdown += excluded_markdown(s.a);
   return out;
 }

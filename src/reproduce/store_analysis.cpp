@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <map>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -12,6 +13,7 @@
 #include "store/results_store.hpp"
 #include "store/store_export.hpp"
 #include "store/stored_rows.hpp"
+#include "sweep/cost_model.hpp"
 #include "theory/equilibrium_column.hpp"
 
 namespace granchain {
@@ -116,6 +118,32 @@ nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& 
   return j;
 }
 
+std::string cost_markdown(const std::vector<RunCost>& costs) {
+  struct Sums {
+    int runs = 0, within_2 = 0;
+    double seconds = 0, predicted = 0, log_ratio = 0;
+  };
+  std::map<int, Sums> by_n;
+  for (const RunCost& c : costs) {
+    if (!(c.seconds > 0) || !(c.predicted > 0)) continue;  // a run stored without a time says nothing
+    Sums& s = by_n[c.N];
+    const double r = c.seconds / c.predicted;
+    ++s.runs;
+    s.seconds += c.seconds;
+    s.predicted += c.predicted;
+    s.log_ratio += std::log(r);
+    if (r >= 0.5 && r <= 2.0) ++s.within_2;
+  }
+  if (by_n.empty()) return "";
+  std::string md =
+      "| N | runs | measured CPU-hours | predicted CPU-hours | measured / predicted (sums) | geometric mean of the runs' ratios | "
+      "within a factor of 2 |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& [N, s] : by_n)
+    md += fmt::format("| {} | {} | {:.3g} | {:.3g} | {:.2f} | {:.2f} | {} of {} |\n", N, s.runs, s.seconds / 3600, s.predicted / 3600,
+                      s.seconds / s.predicted, std::exp(s.log_ratio / s.runs), s.within_2, s.runs);
+  return md;
+}
+
 std::string plus_minus(double v, double e, int digits) {
   if (!std::isfinite(v)) return "-";
   return fmt::format("{:.{}f} ± {:.{}f}", v, digits, e, digits);
@@ -141,7 +169,9 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   for (const StoredRun& row : read_runs(db, sel)) {
     if (row.setup != "driven_column") continue;
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
-    a.run_seconds += std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
+    const double seconds = std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
+    a.run_seconds += seconds;
+    a.costs.push_back({row.spec.params.N, seconds, estimate_cost_seconds(row.spec)});
     analysis::NcollRun run;
     run.engine = row.spec.engine.kind;
     run.drive = row.spec.drive;

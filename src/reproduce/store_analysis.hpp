@@ -25,9 +25,17 @@ struct Condensation {
 };
 using FamilyKey = std::tuple<EngineKind, DriveSpec, int, double>;  // engine, drive, N, kT0
 
+// One stored run's cost: its CPU time (wall time where the store has none) beside what the cost
+// model predicts for it (sweep/cost_model.hpp), for the reports' cost tables.
+struct RunCost {
+  int N = 0;
+  double seconds = 0, predicted = 0;
+};
+
 struct StoreAnalysis {
   std::size_t runs = 0;
   double run_seconds = 0;  // the runs' stored CPU times (wall times for runs stored without one), summed
+  std::vector<RunCost> costs;  // per run, in the store's order
   double k_min = 0;
   analysis::RegimeReport report;
   std::map<FamilyKey, std::map<double, Condensation>> condensation;  // by e
@@ -48,6 +56,9 @@ nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& 
 // Throws StoreError when the store cannot be read.
 StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
 std::string analysis_text(const StoreAnalysis& a);
+// Per N: runs, measured and predicted CPU-hours, the geometric mean of the runs' measured / predicted
+// and how many lie within a factor of 2 (a Markdown table; "" when no run is stored).
+std::string cost_markdown(const std::vector<RunCost>& costs);
 // The runs the analysis left out, grouped by point, each with its reason ("" if none).
 std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded);
 // The same as a report section (Markdown), "" if none.
