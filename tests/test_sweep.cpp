@@ -233,6 +233,36 @@ TEST(RunJson, CpuTimeIsRecordedAndReadBack) {
   EXPECT_TRUE(std::isnan(run_result_from_json(j).cpu_seconds));
 }
 
+// A run keeps the blocking curves behind its errors: every level from the bins down to 16 blocks,
+// the reported n_coll error one of them, and the JSON (so the store) carries them exactly.
+TEST(RunJson, BlockingCurvesAreKeptAndHoldTheReportedError) {
+  const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e6"}, {"T", "50"}}));
+  const RunResult r = run_driven_column(points.front().spec);
+  ASSERT_FALSE(r.n_coll_blocking.empty());
+  ASSERT_EQ(r.height_blocking.size(), r.n_coll_blocking.size());
+  EXPECT_EQ(r.n_coll_blocking.front().blocks, static_cast<int>(r.spec.bins));
+  for (std::size_t l = 1; l < r.n_coll_blocking.size(); ++l)
+    EXPECT_EQ(r.n_coll_blocking[l].blocks * 2, r.n_coll_blocking[l - 1].blocks);
+  EXPECT_EQ(r.n_coll_blocking.back().blocks, 16);
+  bool found = false;
+  for (const BlockingLevel& l : r.n_coll_blocking)
+    if (l.blocks == r.n_coll.blocks) {
+      found = true;
+      EXPECT_EQ(l.error, r.n_coll.error);
+    }
+  EXPECT_TRUE(found) << "the reported error is a level of the curve";
+  for (const BlockingLevel& l : r.height_blocking) EXPECT_GT(l.error, 0.0);
+  nlohmann::json j = run_result_to_json(r);
+  const RunResult back = run_result_from_json(nlohmann::json::parse(j.dump()));
+  ASSERT_EQ(back.n_coll_blocking.size(), r.n_coll_blocking.size());
+  for (std::size_t l = 0; l < r.n_coll_blocking.size(); ++l) {
+    EXPECT_EQ(back.n_coll_blocking[l].error, r.n_coll_blocking[l].error);
+    EXPECT_EQ(back.height_blocking[l].lag1, r.height_blocking[l].lag1);
+  }
+  j.erase("blocking");  // a run stored before the curves were kept
+  EXPECT_TRUE(run_result_from_json(j).n_coll_blocking.empty());
+}
+
 TEST(RunJson, RoundTripIsExact) {
   const auto points = build_sweep_points(small_grid());
   const RunResult r = run_driven_column(points.front().spec);

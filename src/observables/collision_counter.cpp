@@ -35,6 +35,8 @@ Estimate CollisionCounter::collision_rate_per_particle(int N) const { return blo
 
 StationarityCheck CollisionCounter::collision_rate_stationarity(int N) const { return halves_check(sums_, n_coll(N)); }
 
+std::vector<BlockingLevel> CollisionCounter::collision_rate_blocking(int N) const { return blocking_curve(sums_, n_coll(N)); }
+
 Estimate CollisionCounter::floor_hit_rate() const {
   return blocked_estimate(sums_, [](std::span<const double> s) { return s[kFloor] / s[kTime]; });
 }

@@ -21,6 +21,8 @@ class CollisionCounter final : public EventSink {
   Estimate collision_rate_per_particle(int N) const;
   // Halves check (analysis/blocking.hpp) of n_coll over the window.
   StationarityCheck collision_rate_stationarity(int N) const;
+  // The blocking curve behind n_coll's error: the standard error at every level (analysis/blocking.hpp).
+  std::vector<BlockingLevel> collision_rate_blocking(int N) const;
   // Floor hits per unit time.
   Estimate floor_hit_rate() const;
   // Particle-particle collisions per unit time (all pairs together).

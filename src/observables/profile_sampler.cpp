@@ -22,16 +22,20 @@ void ProfileSampler::sample(const ChainState& s) {
   ++taken_;
 }
 
-StationarityCheck ProfileSampler::height_stationarity() const {
+Estimator ProfileSampler::mean_height() const {
   const int n = n_;
   double ref = 0.0;
   for (double z : z_ref_) ref += z / n;
-  return halves_check(sums_, [n, ref](std::span<const double> s) {
+  return [n, ref](std::span<const double> s) {
     double dz = 0.0;
     for (int i = 0; i < n; ++i) dz += s[1 + 3 * i];
     return ref + dz / (n * s[0]);
-  });
+  };
 }
+
+StationarityCheck ProfileSampler::height_stationarity() const { return halves_check(sums_, mean_height()); }
+
+std::vector<BlockingLevel> ProfileSampler::height_blocking() const { return blocking_curve(sums_, mean_height()); }
 
 std::vector<ParticleProfile> ProfileSampler::profiles() const {
   std::vector<ParticleProfile> out(n_);

@@ -26,10 +26,14 @@ class ProfileSampler {
   // Halves check (analysis/blocking.hpp) of the column's mean height, the average of z_i over
   // the particles: a column still settling or drifting changes it between the window's halves.
   StationarityCheck height_stationarity() const;
+  // The blocking curve of that mean height (analysis/blocking.hpp): how its standard error grows with
+  // the block length, which shows the column's slow states (a condensed layer's) where they outlast a block.
+  std::vector<BlockingLevel> height_blocking() const;
 
  private:
   // components per bin: sample count, then per particle: sum dz, sum dz^2, sum v^2,
   // with dz = z - z_ref (z_ref = first sample) to keep sigma_i precise when it is tiny.
+  Estimator mean_height() const;  // the average of z_i over the particles, of summed bins
   int n_;
   double m_;
   std::int64_t expected_;

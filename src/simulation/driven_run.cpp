@@ -125,6 +125,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   if (soft_contacts) r.contacts = contacts.pairs();
   r.n_coll_halves = counter.collision_rate_stationarity(spec.params.N);
   r.height_halves = sampler.height_stationarity();
+  r.n_coll_blocking = counter.collision_rate_blocking(spec.params.N);
+  r.height_blocking = sampler.height_blocking();
   const EngineCounters c = engine->counters();
   r.steps = c.steps + before_switch.steps;
   r.events = c.contact_ends + c.floor_hits + before_switch.contact_ends + before_switch.floor_hits;

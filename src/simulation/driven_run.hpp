@@ -49,6 +49,11 @@ struct RunResult {
   // error bars are not to be trusted (the summary warns, the JSON and the store keep the verdict).
   StationarityCheck n_coll_halves, height_halves;
   bool stationary() const { return n_coll_halves.stationary && height_halves.stationary; }
+  // The blocking curves behind n_coll's error and of the column's mean height: the standard error
+  // with 2^l bins to a block at every level l (analysis/blocking.hpp). Where it still rises at the
+  // last levels the column has states that outlast a block, and independent replicas are the test
+  // of the error; empty for runs stored before the curves were kept.
+  std::vector<BlockingLevel> n_coll_blocking, height_blocking;
 
   std::uint64_t steps = 0;        // engine steps, transient included
   std::uint64_t events = 0;       // contact ends + floor hits, transient included

@@ -70,6 +70,15 @@ json run_result_to_json(const RunResult& r) {
   j["stationarity"] = {{"stationary", r.stationary()},
                        {"n_coll", halves(r.n_coll_halves)},
                        {"mean_height", halves(r.height_halves)}};
+  if (!r.n_coll_blocking.empty()) {
+    // The blocking curves: per level, the blocks, the standard error and the blocks' lag-1 autocorrelation.
+    auto curve = [](const std::vector<BlockingLevel>& c) {
+      json a = json::array();
+      for (const BlockingLevel& l : c) a.push_back({{"blocks", l.blocks}, {"error", l.error}, {"lag1", l.lag1}});
+      return a;
+    };
+    j["blocking"] = {{"n_coll", curve(r.n_coll_blocking)}, {"mean_height", curve(r.height_blocking)}};
+  }
   if (!r.contacts.empty()) {
     // Durations in units of tau_c; histogram[j] counts log2(duration / tau_c) in
     // [log2_min + (first_bin + j) / bins_per_octave, ... + 1 / bins_per_octave).
@@ -158,6 +167,15 @@ RunResult run_result_from_json(const json& j) {
     r.height_halves = halves(j.at("stationarity").at("mean_height"));
   } else {
     r.n_coll_halves.z = r.height_halves.z = nan;
+  }
+  if (j.contains("blocking")) {  // runs stored before the curves were kept have none
+    auto curve = [nan](const json& a) {
+      std::vector<BlockingLevel> c;
+      for (const json& l : a) c.push_back({l.at("blocks").get<int>(), real_or(l, "error", nan), real_or(l, "lag1", nan)});
+      return c;
+    };
+    r.n_coll_blocking = curve(j.at("blocking").at("n_coll"));
+    r.height_blocking = curve(j.at("blocking").at("mean_height"));
   }
   if (j.contains("contacts"))  // runs stored before contact durations were kept have none
     for (const json& q : j.at("contacts").at("pairs")) {
