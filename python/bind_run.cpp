@@ -83,6 +83,25 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
   st["n_coll"] = estimate_halves(r.n_coll_halves);
   st["mean_height"] = estimate_halves(r.height_halves);
   d["stationarity"] = st;
+  // The blocking curves behind the errors: per level, blocks, standard error and lag-1 autocorrelation.
+  const auto curve = [](const std::vector<BlockingLevel>& c) {
+    py::array_t<std::int64_t> blocks(static_cast<py::ssize_t>(c.size()));
+    py::array_t<double> error(static_cast<py::ssize_t>(c.size())), lag1(static_cast<py::ssize_t>(c.size()));
+    for (std::size_t l = 0; l < c.size(); ++l) {
+      blocks.mutable_at(static_cast<py::ssize_t>(l)) = c[l].blocks;
+      error.mutable_at(static_cast<py::ssize_t>(l)) = c[l].error;
+      lag1.mutable_at(static_cast<py::ssize_t>(l)) = c[l].lag1;
+    }
+    py::dict x;
+    x["blocks"] = blocks;
+    x["error"] = error;
+    x["lag1"] = lag1;
+    return x;
+  };
+  py::dict blocking;
+  blocking["n_coll"] = curve(r.n_coll_blocking);
+  blocking["mean_height"] = curve(r.height_blocking);
+  d["blocking"] = blocking;
   d["warnings"] = run_warnings(r);  // the verdicts; the package raises each as granchain.QualityWarning
   py::array_t<std::int64_t> index(static_cast<py::ssize_t>(r.profiles.size()));
   for (py::ssize_t i = 0; i < index.shape(0); ++i) index.mutable_at(i) = i + 1;

@@ -203,3 +203,34 @@ TEST(ReplicaScatter, ChiSquaredPerDegreeOfFreedomIsOneWhenErrorsAreRightAndFourW
   EXPECT_NEAR(h.chi2 / h.dof, 4.0, 4.0 * 4.0 * std::sqrt(2.0 / 900));
   EXPECT_GT(h.chi2_z, 10.0);
 }
+
+// Level by level: replicas whose true scatter is 0.2 while their curves rise from 0.05 (1024
+// blocks) to 0.2 at 64 blocks and stay there. chi^2/dof is 16 with the shortest blocks' errors, 1
+// from 64 blocks on, and 4 with the reported errors (0.1, the level of 256 blocks): the check says
+// from which block length on the errors see the scatter.
+TEST(ReplicaScatter, LevelByLevelTheChiSquaredFallsToOneWhereTheCurveReachesTheScatter) {
+  Rng rng(43);
+  const std::vector<std::pair<int, double>> curve = {{1024, 0.05}, {512, 0.07}, {256, 0.1}, {128, 0.14}, {64, 0.2}, {32, 0.2}, {16, 0.2}};
+  std::vector<std::vector<ReplicaRun>> groups;
+  for (int g = 0; g < 300; ++g) {
+    std::vector<ReplicaRun> runs;
+    for (int i = 0; i < 4; ++i) {
+      ReplicaRun r{3.0 + g + 0.2 * rng.normal(), 0.1, {}};
+      for (const auto& [b, err] : curve) r.curve.push_back({b, err, 0.0});
+      runs.push_back(r);
+    }
+    groups.push_back(runs);
+  }
+  groups.push_back({ReplicaRun{1.0, 0.1, {{16, 0.2, 0.0}}}});  // one run: skipped
+  const CurveScatter s = replica_scatter_by_level(groups);
+  EXPECT_EQ(s.groups, 300);
+  EXPECT_EQ(s.dof, 900);
+  ASSERT_EQ(s.levels.size(), curve.size());
+  const double sd = std::sqrt(2.0 / 900);  // of chi^2/dof, relative
+  EXPECT_NEAR(s.chi2_reported / s.dof, 4.0, 4.0 * 4.0 * sd);
+  for (std::size_t l = 0; l < curve.size(); ++l) {
+    const double expected = 0.04 / (curve[l].second * curve[l].second);
+    EXPECT_EQ(s.levels[l].blocks, curve[l].first);
+    EXPECT_NEAR(s.levels[l].chi2 / s.dof, expected, 4.0 * expected * sd) << curve[l].first << " blocks";
+  }
+}

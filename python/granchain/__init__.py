@@ -78,7 +78,8 @@ def run(**kwargs):
     Returns a RunResult (a dict whose keys are also attributes; .profile() and .to_pandas() give
     the profile as a table): parameters, n_coll, n_coll_err, n_coll_blocks, n_coll_converged,
     floor_rate(_err), pp_rate(_err), particle_collisions, floor_hits, stationary (bool),
-    stationarity (the halves compared), warnings (the verdicts, each also raised as
+    stationarity (the halves compared), blocking (the blocking curves of n_coll and of the mean
+    height: blocks, error, lag1 per level), warnings (the verdicts, each also raised as
     granchain.QualityWarning), per-particle numpy arrays i, z_mean, z_mean_err, z_std,
     z_std_err, K, K_err (i = 1 at the bottom), derived (D, tau_c, dt, sample_interval, samples),
     cost (steps, events, wall_seconds, cpu_seconds), code_version, stored (None, or db and run_id

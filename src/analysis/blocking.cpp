@@ -141,6 +141,55 @@ double chi2_normal_deviate(double chi2, int dof) {
   return (std::cbrt(chi2 / dof) - (1.0 - v)) / std::sqrt(v);
 }
 
+CurveScatter replica_scatter_by_level(const std::vector<std::vector<ReplicaRun>>& groups) {
+  CurveScatter out;
+  // The block counts every run's curve has.
+  std::vector<int> blocks;
+  bool first = true;
+  for (const auto& g : groups) {
+    if (g.size() < 2) continue;
+    for (const ReplicaRun& r : g) {
+      std::vector<int> b;
+      for (const BlockingLevel& l : r.curve)
+        if (l.error > 0 && (first || std::find(blocks.begin(), blocks.end(), l.blocks) != blocks.end())) b.push_back(l.blocks);
+      blocks = b;
+      first = false;
+    }
+  }
+  std::sort(blocks.rbegin(), blocks.rend());
+  for (int b : blocks) out.levels.push_back({b, 0.0});
+  // chi^2 of one point's values with the errors err(i), about their weighted mean.
+  const auto chi2_of = [](const std::vector<ReplicaRun>& g, const auto& err) {
+    double sw = 0, swx = 0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const double w = 1.0 / (err(i) * err(i));
+      sw += w;
+      swx += w * g[i].value;
+    }
+    const double mean = swx / sw;
+    double c = 0;
+    for (std::size_t i = 0; i < g.size(); ++i) c += (g[i].value - mean) * (g[i].value - mean) / (err(i) * err(i));
+    return c;
+  };
+  for (const auto& g : groups) {
+    if (g.size() < 2) continue;
+    bool usable = true;
+    for (const ReplicaRun& r : g) usable = usable && r.error > 0;
+    if (!usable) continue;
+    ++out.groups;
+    out.runs += static_cast<int>(g.size());
+    out.dof += static_cast<int>(g.size()) - 1;
+    out.chi2_reported += chi2_of(g, [&](std::size_t i) { return g[i].error; });
+    for (LevelScatter& l : out.levels)
+      l.chi2 += chi2_of(g, [&](std::size_t i) {
+        for (const BlockingLevel& x : g[i].curve)
+          if (x.blocks == l.blocks) return x.error;
+        return std::numeric_limits<double>::quiet_NaN();  // not reached: every run has every level kept
+      });
+  }
+  return out;
+}
+
 ReplicaScatter replica_scatter(const std::vector<std::vector<std::pair<double, double>>>& groups) {
   ReplicaScatter out;
   for (std::size_t g = 0; g < groups.size(); ++g) {

@@ -96,4 +96,26 @@ struct ReplicaScatter {
 };
 ReplicaScatter replica_scatter(const std::vector<std::vector<std::pair<double, double>>>& groups);
 
+// The same check level by level of the blocking curve: where the replicas scatter more than the
+// reported errors say, would longer blocks have seen it? Each group holds the runs of one point
+// that carry a curve: n_coll, the reported error and the curve. At each block count that every
+// run's curve has, chi^2_l = sum over points and runs of (x_i - xbar_l)^2 / SE_l,i^2 about the mean
+// weighted by those errors (m - 1 degrees of freedom per point). chi2_l / dof falls toward 1 at the
+// level whose blocks outlast the correlations; where it stays above 1 at the longest blocks (16 per
+// window), the column has states that outlast T / 16, which blocking within one run cannot see.
+struct LevelScatter {
+  int blocks = 0;
+  double chi2 = 0;
+};
+struct CurveScatter {
+  int groups = 0, runs = 0, dof = 0;
+  double chi2_reported = 0;  // with the reported errors, as replica_scatter
+  std::vector<LevelScatter> levels;  // longest blocks last
+};
+struct ReplicaRun {
+  double value = 0, error = 0;
+  std::vector<BlockingLevel> curve;
+};
+CurveScatter replica_scatter_by_level(const std::vector<std::vector<ReplicaRun>>& groups);
+
 }  // namespace granchain

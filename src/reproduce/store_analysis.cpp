@@ -166,7 +166,9 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   StoreAnalysis a;
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
-  for (const StoredRun& row : read_runs(db, sel)) {
+  const std::vector<StoredRun> rows = read_runs(db, sel);
+  a.blocking_checks = blocking_against_replicas(db, rows);
+  for (const StoredRun& row : rows) {
     if (row.setup != "driven_column") continue;
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
     const double seconds = std::isnan(row.cpu_seconds) ? row.wall_seconds : row.cpu_seconds;
@@ -241,6 +243,9 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                              {"e_c2", critical_json(f.e_c2)},
                              {"e_c2_curvature_sign", critical_json(f.e_c2_sign)},
                              {"replica_check", replica_check_json(f)},
+                             {"blocking_check", a.blocking_checks.count({f.engine, f.drive, f.N, f.kT0})
+                                                    ? curve_scatter_json(a.blocking_checks.at({f.engine, f.drive, f.N, f.kT0}))
+                                                    : nlohmann::json(nullptr)},
                              {"alpha_bar", f.has_alpha_bar ? nlohmann::json{{"value", f.alpha_bar.value}, {"error", f.alpha_bar.error}}
                                                            : nlohmann::json(nullptr)}});
     put_drive(j["families"].back(), f.drive);
@@ -359,6 +364,10 @@ std::string analysis_text(const StoreAnalysis& a) {
                          "(z = {:.1f}; about 1 when the errors are right); largest chi2/dof {:.2f} at e = {:g}, k = {:g}\n",
                          r.groups, r.runs, r.chi2, r.dof, r.chi2 / r.dof, r.chi2_z, r.worst_ratio, f.replicas_worst_e,
                          f.replicas_worst_k);
+    if (const auto b = a.blocking_checks.find({f.engine, f.drive, f.N, f.kT0}); b != a.blocking_checks.end()) {
+      out += "    the replicas that keep blocking curves, level by level (chi2/dof about 1 where blocks of that length see the scatter):\n";
+      for (const auto& [k, s] : b->second) out += "      " + curve_scatter_text(k, s) + "\n";
+    }
   }
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit)) continue;

@@ -10,6 +10,7 @@
 
 #include "analysis/condensation.hpp"
 #include "analysis/regime_report.hpp"
+#include "reproduce/replica_blocking.hpp"
 #include "store/output_file.hpp"
 #include "store/store_export.hpp"
 
@@ -23,7 +24,6 @@ struct Condensation {
   std::vector<analysis::ParticleValue> K, sigma;
   std::vector<double> sigma0;
 };
-using FamilyKey = std::tuple<EngineKind, DriveSpec, int, double>;  // engine, drive, N, kT0
 
 // One stored run's cost: its CPU time (wall time where the store has none) beside what the cost
 // model predicts for it (sweep/cost_model.hpp), for the reports' cost tables.
@@ -39,6 +39,8 @@ struct StoreAnalysis {
   double k_min = 0;
   analysis::RegimeReport report;
   std::map<FamilyKey, std::map<double, Condensation>> condensation;  // by e
+  // The replicas' scatter against their blocking curves, by family and k (reproduce/replica_blocking.hpp).
+  std::map<FamilyKey, std::map<double, CurveScatter>> blocking_checks;
   nlohmann::json json;
 };
 

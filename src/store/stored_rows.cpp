@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "config/run_options.hpp"
@@ -76,6 +79,31 @@ std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection sel
     s.point_key = r.column_text(key);
     s.replica = r.column_type(replica) == SQLITE_NULL ? 0 : static_cast<int>(r.column_int(replica));
     out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::map<std::int64_t, std::vector<BlockingLevel>> read_n_coll_blocking(const std::string& db_path) {
+  ResultsStore::preflight(db_path, ResultsStore::Access::ReadOnly);
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    throw StoreError(fmt::format("--db: cannot open '{}'", db_path));
+  }
+  const std::unique_ptr<sqlite3, int (*)(sqlite3*)> owner(db, sqlite3_close);
+  sqlite3_busy_timeout(db, 60000);
+  SqlStatement q(db, "SELECT id, json_extract(result_json, '$.blocking.n_coll') FROM runs WHERE instr(result_json, '\"blocking\"') > 0");
+  std::map<std::int64_t, std::vector<BlockingLevel>> out;
+  while (q.row()) {
+    const std::int64_t id = q.column_int(0);
+    try {
+      std::vector<BlockingLevel>& c = out[id];
+      for (const nlohmann::json& l : nlohmann::json::parse(std::string(q.column_text(1))))
+        c.push_back({l.at("blocks").get<int>(), l.at("error").is_number() ? l.at("error").get<double>() : std::nan(""),
+                     l.at("lag1").is_number() ? l.at("lag1").get<double>() : std::nan("")});
+    } catch (const nlohmann::json::exception& e) {
+      throw StoreError(fmt::format("results store: run {}: its blocking curve cannot be read: {}", id, e.what()));
+    }
   }
   return out;
 }

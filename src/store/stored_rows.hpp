@@ -2,6 +2,7 @@
 // Stored driven-column runs and their profiles as typed rows, for the analysis and the
 // reproduction (no text in between). The selection is the export's (store/store_export.hpp).
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,5 +42,8 @@ struct StoredProfile {
 std::vector<StoredRun> read_runs(const std::string& db_path, ExportSelection selection);
 // The selected profiles (selection.table is ignored), by run and particle. Throws StoreError.
 std::vector<StoredProfile> read_profiles(const std::string& db_path, ExportSelection selection);
+// The blocking curve of n_coll of every run that keeps one (simulation/driven_run.hpp; runs stored
+// before the curves were kept have none), by run id. Throws StoreError.
+std::map<std::int64_t, std::vector<BlockingLevel>> read_n_coll_blocking(const std::string& db_path);
 
 }  // namespace granchain

@@ -45,6 +45,11 @@ def test_run_is_bit_identical_to_the_cli(cli_json, engine, params):
     assert r["z_mean"].tolist() == [p["z_mean"] for p in j["profiles"]]
     assert r["K_err"].tolist() == [p["K_err"] for p in j["profiles"]]
     assert r["parameters"]["k"] == (np.inf if engine == "hard" else params["k"])
+    # The blocking curve: the reported error is one of its levels, and the CLI's JSON has the same.
+    curve = r["blocking"]["n_coll"]
+    assert curve["error"].tolist() == [l["error"] for l in j["blocking"]["n_coll"]]
+    assert r["n_coll_err"] in curve["error"].tolist()
+    assert curve["blocks"][-1] == 16 and curve["blocks"][0] == 2 * curve["blocks"][1]
     # The whole JSON the module keeps is the CLI's, number for number.
     assert same_json_but_cost(json.loads(r["json"]), j)
 
