@@ -365,7 +365,7 @@ std::string analysis_text(const StoreAnalysis& a) {
                          r.groups, r.runs, r.chi2, r.dof, r.chi2 / r.dof, r.chi2_z, r.worst_ratio, f.replicas_worst_e,
                          f.replicas_worst_k);
     if (const auto b = a.blocking_checks.find({f.engine, f.drive, f.N, f.kT0}); b != a.blocking_checks.end()) {
-      out += "    the replicas that keep blocking curves, level by level (chi2/dof about 1 where blocks of that length see the scatter):\n";
+      out += "    the replicas that keep blocking curves, level by level (chi2/dof about (n - 1)/(n - 3) with n blocks, 1.15 at 16, where blocks of that length see the scatter):\n";
       for (const auto& [k, s] : b->second) out += "      " + curve_scatter_text(k, s) + "\n";
     }
   }
