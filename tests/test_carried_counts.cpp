@@ -157,9 +157,17 @@ TEST_F(CarriedCountCli, SigtermKeepsTheLaunchesAndTheSameCommandFinishesTheCount
   EXPECT_GE(kept, 3);
   EXPECT_EQ(query(dir_ / "c.db", "SELECT count(*) FROM collapse_runs"), 0);
 
+  // Launches counted by another build: the resumed count names its version beside its own.
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((dir_ / "c.db").c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db, "UPDATE collapse_launches SET code_version = 'an-earlier-build'", nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
   const CliResult resumed = run(count + " --db c.db --json resumed.json");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("launches carried over from an earlier sitting"), std::string::npos) << resumed.out;
+  EXPECT_NE(resumed.out.find("counted by code version an-earlier-build, this is"), std::string::npos) << resumed.out;
   const auto observables = [&](const std::string& file) { return nlohmann::json::parse(slurp(dir_ / file))["points"][0]["observables"]; };
   EXPECT_EQ(observables("resumed.json"), observables("whole.json"));
   EXPECT_EQ(query(dir_ / "c.db", "SELECT count(*) FROM collapse_launches"), 0);

@@ -236,7 +236,7 @@ int execute_collapse(const std::shared_ptr<CollapseFlags>& impl_) {
         const std::size_t point = results.size();
         std::optional<CollapseResult>& stored_count = stored_counts[point];
         const std::size_t carried = kept[point].done.size();
-        const std::set<std::string>& carried_versions = kept[point].code_versions;
+        const std::set<std::string> carried_versions = kept[point].code_versions;  // a copy: kept[point] is handed over below
         if (stored_count) {
           stored_count->spec.threads = spec.threads;
           results.push_back(*stored_count);
