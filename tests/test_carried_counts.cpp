@@ -181,6 +181,10 @@ TEST_F(CarriedCountCli, SigtermKeepsTheLaunchesAndTheSameCommandFinishesTheCount
   const auto point = [&](const std::string& file) { return nlohmann::json::parse(slurp(dir_ / file))["points"][0]; };
   EXPECT_EQ(point("again.json")["derived"], point("whole.json")["derived"]);
   EXPECT_TRUE(point("again.json").contains("read_back"));
+  // The launches' own times, the carried ones included: about what the one-go count spent on its threads.
+  const double carried_seconds = point("resumed.json")["cost"]["launch_seconds"], whole_seconds = point("whole.json")["cost"]["launch_seconds"];
+  EXPECT_GT(carried_seconds, 0.2 * whole_seconds);  // wide: wall times on threads of a loaded machine
+  EXPECT_LT(carried_seconds, 5.0 * whole_seconds);
   EXPECT_FALSE(point("resumed.json").contains("read_back"));
 
   // The hard engine's collapse watch is not a stored parameter: a count to be stored keeps its default.
