@@ -142,50 +142,33 @@ double chi2_normal_deviate(double chi2, int dof) {
 }
 
 CurveScatter replica_scatter_by_level(const std::vector<std::vector<ReplicaRun>>& groups) {
-  CurveScatter out;
-  // The block counts every run's curve has.
-  std::vector<int> blocks;
-  bool first = true;
-  for (const auto& g : groups) {
-    if (g.size() < 2) continue;
-    for (const ReplicaRun& r : g) {
-      std::vector<int> b;
-      for (const BlockingLevel& l : r.curve)
-        if (l.error > 0 && (first || std::find(blocks.begin(), blocks.end(), l.blocks) != blocks.end())) b.push_back(l.blocks);
-      blocks = b;
-      first = false;
-    }
-  }
-  std::sort(blocks.rbegin(), blocks.rend());
-  for (int b : blocks) out.levels.push_back({b, 0.0});
-  // chi^2 of one point's values with the errors err(i), about their weighted mean.
-  const auto chi2_of = [](const std::vector<ReplicaRun>& g, const auto& err) {
-    double sw = 0, swx = 0;
-    for (std::size_t i = 0; i < g.size(); ++i) {
-      const double w = 1.0 / (err(i) * err(i));
-      sw += w;
-      swx += w * g[i].value;
-    }
-    const double mean = swx / sw;
-    double c = 0;
-    for (std::size_t i = 0; i < g.size(); ++i) c += (g[i].value - mean) * (g[i].value - mean) / (err(i) * err(i));
-    return c;
+  // The error of run r at `blocks` blocks (0 where its curve lacks the level: replica_scatter then
+  // skips the point, so only levels every run has are compared).
+  const auto error_at = [](const ReplicaRun& r, int blocks) {
+    for (const BlockingLevel& l : r.curve)
+      if (l.blocks == blocks) return l.error;
+    return 0.0;
   };
+  // As (value, error) groups, with the reported errors (blocks = 0) or those of one level.
+  const auto as_pairs = [&](int blocks) {
+    std::vector<std::vector<std::pair<double, double>>> pairs;
+    for (const auto& g : groups) {
+      pairs.emplace_back();
+      for (const ReplicaRun& r : g) pairs.back().push_back({r.value, blocks == 0 ? r.error : error_at(r, blocks)});
+    }
+    return pairs;
+  };
+  const ReplicaScatter reported = replica_scatter(as_pairs(0));
+  CurveScatter out{reported.groups, reported.runs, reported.dof, reported.chi2, {}};
+  // The levels of the first replicated run's curve, longest blocks last; a level kept only if
+  // every point that enters with its reported errors enters with it too.
   for (const auto& g : groups) {
     if (g.size() < 2) continue;
-    bool usable = true;
-    for (const ReplicaRun& r : g) usable = usable && r.error > 0;
-    if (!usable) continue;
-    ++out.groups;
-    out.runs += static_cast<int>(g.size());
-    out.dof += static_cast<int>(g.size()) - 1;
-    out.chi2_reported += chi2_of(g, [&](std::size_t i) { return g[i].error; });
-    for (LevelScatter& l : out.levels)
-      l.chi2 += chi2_of(g, [&](std::size_t i) {
-        for (const BlockingLevel& x : g[i].curve)
-          if (x.blocks == l.blocks) return x.error;
-        return std::numeric_limits<double>::quiet_NaN();  // not reached: every run has every level kept
-      });
+    for (const BlockingLevel& l : g.front().curve) {
+      const ReplicaScatter s = replica_scatter(as_pairs(l.blocks));
+      if (s.groups == reported.groups && s.dof == reported.dof) out.levels.push_back({l.blocks, s.chi2});
+    }
+    break;
   }
   return out;
 }

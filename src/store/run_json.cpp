@@ -116,6 +116,13 @@ Estimate estimate_from_json(const json& j) {
 
 }  // namespace
 
+std::vector<BlockingLevel> blocking_curve_from_json(const json& levels) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<BlockingLevel> c;
+  for (const json& l : levels) c.push_back({l.at("blocks").get<int>(), real_or(l, "error", nan), real_or(l, "lag1", nan)});
+  return c;
+}
+
 RunResult run_result_from_json(const json& j) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   RunResult r;
@@ -169,13 +176,8 @@ RunResult run_result_from_json(const json& j) {
     r.n_coll_halves.z = r.height_halves.z = nan;
   }
   if (j.contains("blocking")) {  // runs stored before the curves were kept have none
-    auto curve = [nan](const json& a) {
-      std::vector<BlockingLevel> c;
-      for (const json& l : a) c.push_back({l.at("blocks").get<int>(), real_or(l, "error", nan), real_or(l, "lag1", nan)});
-      return c;
-    };
-    r.n_coll_blocking = curve(j.at("blocking").at("n_coll"));
-    r.height_blocking = curve(j.at("blocking").at("mean_height"));
+    r.n_coll_blocking = blocking_curve_from_json(j.at("blocking").at("n_coll"));
+    r.height_blocking = blocking_curve_from_json(j.at("blocking").at("mean_height"));
   }
   if (j.contains("contacts"))  // runs stored before contact durations were kept have none
     for (const json& q : j.at("contacts").at("pairs")) {

@@ -16,5 +16,7 @@ nlohmann::json run_result_to_json(const RunResult& r);
 // (nlohmann writes doubles with 17 significant digits). Per-particle profile estimates keep value
 // and error only (their block counts are not in the JSON).
 RunResult run_result_from_json(const nlohmann::json& j);
+// One blocking curve (the array under "blocking"."n_coll" or "mean_height"); null numbers read as NaN.
+std::vector<BlockingLevel> blocking_curve_from_json(const nlohmann::json& levels);
 
 }  // namespace granchain

@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "config/run_options.hpp"
 #include "store/results_store.hpp"
+#include "store/run_json.hpp"
 #include "store/sqlite_statement.hpp"
 
 namespace granchain {
@@ -97,10 +97,7 @@ std::map<std::int64_t, std::vector<BlockingLevel>> read_n_coll_blocking(const st
   while (q.row()) {
     const std::int64_t id = q.column_int(0);
     try {
-      std::vector<BlockingLevel>& c = out[id];
-      for (const nlohmann::json& l : nlohmann::json::parse(std::string(q.column_text(1))))
-        c.push_back({l.at("blocks").get<int>(), l.at("error").is_number() ? l.at("error").get<double>() : std::nan(""),
-                     l.at("lag1").is_number() ? l.at("lag1").get<double>() : std::nan("")});
+      out[id] = blocking_curve_from_json(nlohmann::json::parse(q.column_text(1)));
     } catch (const nlohmann::json::exception& e) {
       throw StoreError(fmt::format("results store: run {}: its blocking curve cannot be read: {}", id, e.what()));
     }
