@@ -603,15 +603,18 @@ TEST_F(SweepCli, HardSphereCollapsesAreStoredAsOutcomesAndNotRunAgain) {
   EXPECT_NE(reverse.err.find(": a collapse at t ="), std::string::npos) << reverse.err;
 }
 
-// The large preset: the paper's across-N sweep extended to N = 1000, with four replicas on the
-// condensed side; --print-sweeps runs nothing and predicts the cost; a bad preset is refused.
+// The large preset: the paper's across-N sweep extended to N = 1000 and, for N >= 100, to c = 10,
+// with four replicas on the condensed side; --print-sweeps runs nothing and predicts the cost; a bad preset is refused.
 TEST_F(SweepCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
   const CliResult r = run("reproduce --figure fig6 --preset large --print-sweeps --db l.db");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("granchain sweep --N 1000 --e 0.995,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 1000 --e 0.99,0.992,0.993,0.994,0.995,"), std::string::npos) << r.out;
+  // e_c2's side beyond c = N (1 - e) = 5: c = 10, 8, 7, 6 single at N = 100, with replicas at N >= 200
+  EXPECT_NE(r.out.find("granchain sweep --N 100 --e 0.9,0.92,0.93,0.94,0.95,0.96,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 200 --e 0.95,0.96,0.965,0.97,0.975,"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 150 --e 0.1,0.2,0.3,0.4 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 20 --e"), std::string::npos) << r.out;  // the paper's columns stay
-  EXPECT_NE(r.out.find("1992 distinct points"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2424 distinct points"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "l.db"));
   const CliResult bad = run("reproduce --figure fig6 --preset huge --db l.db");
   EXPECT_EQ(bad.exit_code, 2);

@@ -2,6 +2,7 @@
 // powerexpo (fig9) from one sweep over N = 20..150 (to 1000 in the large preset) at k_B T0 = 1, and Table 1 (N = 25, 50 at
 // k_B T0 = 1, 2, 4, 10).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <map>
@@ -32,7 +33,8 @@ std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<
 
 // The large preset: the paper's columns and N = 200 ... 1000 on the same grids, with four replicas
 // on the power-law side of N >= 100 and at the condensed points (c = N (1 - e) >= 2.6, where the
-// paper puts e_c1) of N >= 200; replica 0 of each is the single run of the paper's grid. Each point
+// paper puts e_c1) of N >= 200; replica 0 of each is the single run of the paper's grid. N >= 100
+// add c = 6 ... 10 (ec2_extension_c), where their e_c2 lies. Each point
 // is in one block only (the single-run block of N >= 100 leaves out the e the replicas' block has),
 // so that the sweeps `--print-sweeps` lists, each split into shards of its own, never share a point
 // (two job-array tasks would otherwise compute it twice, into different stores).
@@ -41,12 +43,12 @@ std::vector<GridBlock> large_blocks(const ReproduceFlags& o) {
   for (int N : kAcrossN) (N < 100 ? single : replicated).push_back(N);
   replicated.insert(replicated.end(), kLargeN.begin(), kLargeN.end());
   std::vector<GridBlock> blocks = across_blocks(o, single, "1");
-  std::vector<double> condensed, uncondensed;
-  for (double c : critical_region_c()) (c >= 2.6 - 1e-9 ? condensed : uncondensed).push_back(c);
+  std::vector<double> wide = ec2_extension_c(), condensed, uncondensed;  // c = 10 ... 1.2
+  wide.insert(wide.end(), critical_region_c().begin(), critical_region_c().end());
+  for (double c : wide) (c >= 2.6 - 1e-9 ? condensed : uncondensed).push_back(c);
   for (int N : replicated) {
     const bool large = N >= 200;
-    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, large ? uncondensed : critical_region_c()), preset_k(o),
-                      preset_T(o, N), "1"});
+    blocks.push_back({std::to_string(N), e_list_at_n_one_minus_e(N, large ? uncondensed : wide), preset_k(o), preset_T(o, N), "1"});
     const std::string e = large ? e_list_at_n_one_minus_e(N, condensed) + "," + kPowerLawE : kPowerLawE;
     blocks.push_back({std::to_string(N), e, preset_k(o), preset_T(o, N), "1", kLargeReplicas});
   }
@@ -72,9 +74,9 @@ SweepAnalysis run_and_analyze(const ReproduceFlags& o, const std::vector<GridBlo
                             "e = 1 - c/N for {} and e = {}{}; {} runs",
                             preset_k(o), power_of_ten_text(preset_k_min(o)), preset_T(o, 20), preset_T(o, 50), critical_region_text(),
                             kPowerLawE,
-                            o.large() ? fmt::format("; {} replicas at e = {} for N >= 100 and at c >= 2.6 for N >= 200 (errors from "
-                                                    "them where they scatter more than blocking says)",
-                                                    kLargeReplicas, kPowerLawE)
+                            o.large() ? fmt::format("; for N >= 100 also c = {}; {} replicas at e = {} for N >= 100 and at c >= 2.6 "
+                                                    "for N >= 200 (errors from them where they scatter more than blocking says)",
+                                                    fmt::join(ec2_extension_c(), ", "), kLargeReplicas, kPowerLawE)
                                       : "",
                             s.a.runs);
   return s;

@@ -292,6 +292,10 @@ const std::vector<double>& critical_region_c() {
   static const std::vector<double> c = {5.0, 4.0, 3.5, 3.2, 3.0, 2.8, 2.6, 2.4, 2.2, 2.0, 1.6, 1.2};
   return c;
 }
+const std::vector<double>& ec2_extension_c() {
+  static const std::vector<double> c = {10.0, 8.0, 7.0, 6.0};
+  return c;
+}
 std::string critical_region_text() {
   std::string out;
   for (double c : critical_region_c()) out += fmt::format("{}{:g}", out.empty() ? "c = " : ", ", c);
@@ -303,7 +307,7 @@ std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyA
   const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
   if (fc == a.condensation.end()) return out;
   for (const auto& [e, c] : fc->second)
-    if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= critical_region_c().front() + 1e-9) out.push_back(e);
+    if (c.check.state == analysis::CondensedState::Partial && f.N * (1.0 - e) <= ec2_extension_c().front() + 1e-9) out.push_back(e);
   return out;
 }
 

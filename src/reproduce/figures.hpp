@@ -144,8 +144,12 @@ std::string draw_figure(const ReproduceFlags& o, const std::string& name, const 
 const std::vector<double>& critical_region_c();
 // "c = 5, 4, 3.5, ..., 1.2" for reports.
 std::string critical_region_text();
+// Beyond the critical region on its condensed side, c = 6, 7, 8, 10: where the large preset looks
+// for e_c2 of N >= 100, whose power-law side starts past c = 5 (docs/columns.md).
+const std::vector<double>& ec2_extension_c();
 // The e of the family's grid at which the profiles show the partially condensed state (a K_i dip
-// with an interior hot layer above it, analysis/condensation.hpp), within the critical region.
+// with an interior hot layer above it, analysis/condensation.hpp), within the critical region and
+// its extension (c <= 10).
 std::vector<double> condensed_es(const StoreAnalysis& a, const analysis::FamilyAnalysis& f);
 // The e grid of a critical region as a list: e = 1 - c/N for each c (12 significant digits).
 std::string e_list_at_n_one_minus_e(int N, const std::vector<double>& c);
