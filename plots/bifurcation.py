@@ -100,9 +100,18 @@ def main(argv):
         else:
             entry(point, label)
 
-    top = ax.secondary_xaxis("top")  # the same 1/N, labelled with N at each N drawn
-    top.set_xticks([1.0 / f["N"] for f in fams])
-    top.set_xticklabels(["%d" % f["N"] for f in fams], fontsize=6)
+    # The same 1/N on top, a tick at each N drawn; a label only where it clears the last one (from
+    # the largest N), so that the crowded large N near 1/N = 0 do not print over each other.
+    top = ax.secondary_xaxis("top")
+    ns = sorted({f["N"] for f in fams}, reverse=True)
+    gap = 0.035 * (ax.get_xlim()[1] - ax.get_xlim()[0])
+    top_labels, last = [], None
+    for n in ns:
+        keep = last is None or 1.0 / n - last >= gap
+        top_labels.append("%d" % n if keep else "")
+        last = 1.0 / n if keep else last
+    top.set_xticks([1.0 / n for n in ns])
+    top.set_xticklabels(top_labels, fontsize=6)
     top.set_xlabel(r"$N$")
     ax.set_xlabel(r"$1/N$")
     ax.set_ylabel(r"$1 - e$")
