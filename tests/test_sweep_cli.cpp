@@ -497,6 +497,23 @@ TEST_F(SweepCli, AnalyzeClassifiesStoredCurves) {
   const CliResult text = run("analyze --db a.db --plot fig");
   EXPECT_NE(text.out.find("power-law"), std::string::npos) << text.out;
   EXPECT_TRUE(fs::exists(dir_ / "fig_N25_T01_exact.png") && fs::exists(dir_ / "fig_N25_T01_exact.pdf")) << text.out << text.err;
+  // --k chooses a window of k: only its values enter every curve (the stationarity flag of k = 1e10
+  // goes with it); four k still tell a power law, two k classify nothing.
+  const CliResult window = run("analyze --db a.db --k 1e5:1e8:x10 --json");
+  ASSERT_EQ(window.exit_code, 0) << window.err;
+  const auto w = nlohmann::json::parse(window.out)["families"][0]["curves"];
+  ASSERT_EQ(w.size(), 3u);
+  for (const auto& c : w) EXPECT_EQ(c["n_coll_of_k"].size(), 4u) << c["e"];
+  EXPECT_EQ(w[0]["regime"], "power-law");
+  EXPECT_NEAR(w[0]["power_fit"]["alpha"].get<double>(), 0.2, 4 * w[0]["power_fit"]["alpha_err"].get<double>());
+  EXPECT_TRUE(w[2]["non_stationary_k"].empty());
+  const auto two = nlohmann::json::parse(run("analyze --db a.db --k 1e9,1e10 --json").out)["families"][0]["curves"];
+  ASSERT_EQ(two.size(), 3u);
+  EXPECT_FALSE(two[0]["classified"].get<bool>());
+  // --T selects by window length: every run of this store has T = 100.
+  EXPECT_EQ(nlohmann::json::parse(run("analyze --db a.db --T 100 --json").out)["families"], j["families"]);
+  EXPECT_EQ(run("analyze --db a.db --T 200").out.rfind("0 runs", 0), 0u);
+  EXPECT_EQ(run("analyze --db a.db --k 1e5:1e3").exit_code, 2);
   EXPECT_EQ(run("analyze --db missing.db").exit_code, 2);
   EXPECT_EQ(run("analyze --db a.db --k-min -1").exit_code, 2);
 }

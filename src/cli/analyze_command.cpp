@@ -9,9 +9,9 @@
 #include "provenance.hpp"
 #include "store/output_file.hpp"
 #include "reproduce/store_analysis.hpp"
+#include "cli/row_filters.hpp"
 #include "cli/subcommand.hpp"
 #include "cli/exit_codes.hpp"
-#include "config/value_list.hpp"
 #include "store/results_store.hpp"
 
 namespace granchain {
@@ -19,7 +19,8 @@ namespace granchain {
 namespace {
 
 struct AnalyzeFlags {
-  std::string db = "granchain.db", N, T0, engine, json_path, plot_prefix;
+  std::string db = "granchain.db", engine, json_path, plot_prefix;
+  RowFilters filters;
   double k_min = 0;
   CLI::Option* json_option = nullptr;
   bool quiet = false;
@@ -38,11 +39,11 @@ Subcommand add_analyze_command(CLI::App& app) {
       "c k^alpha and classifies it (uncollapsing: b not > 2 errors; power-law: b > 0 and convex against\n"
       "log10 k; logarithmic: otherwise). Per (engine, N, T0): e_c1 (root of sqrt(b) against e), e_c2 (the\n"
       "convex/concave bracket), alpha bar (mean alpha at e = 0.1..0.4). Across N: (1 - e_c) = A/N and\n"
-      "alpha bar = p log10 N + q. Criteria and errors: docs/analysis.md.\n" +
+      "alpha bar = p log10 N + q. Criteria and errors: docs/analysis.md. The filters choose the runs: --k\n"
+      "1e6:1e10:x10 fits one window of k at every N, --T one window length.\n" +
       exit_codes_help("2 bad input or no usable store (nothing written), 4 an output could not be written"));
   sub_->add_option("--db", impl_->db, "results store to read; default granchain.db")->type_name("FILE");
-  sub_->add_option("--N", impl_->N, "only these N (list or range)")->type_name("LIST");
-  sub_->add_option("--T0", impl_->T0, "only these floor temperatures (list or range)")->type_name("LIST");
+  impl_->filters.add_to(sub_, "runs");
   sub_->add_option("--engine", impl_->engine, "only this engine (default: all, each analysed apart)");
   sub_->add_option("--k-min", impl_->k_min, "start of the asymptotic range: only k >= k-min enters the fits; default 0");
   impl_->json_option = sub_->add_option("--json", impl_->json_path, "write the analysis as JSON to FILE, or to standard output")
@@ -64,8 +65,7 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
   ExportSelection sel;
   try {
-    if (!o.N.empty()) sel.values["N"] = parse_value_list(o.N, "--N");
-    if (!o.T0.empty()) sel.values["T0"] = parse_value_list(o.T0, "--T0");
+    o.filters.apply(sel);
     if (!o.engine.empty()) sel.engines = {o.engine};
     if (!(o.k_min >= 0 && std::isfinite(o.k_min)))
       throw InputError(fmt::format("--k-min = {} is out of range; valid range: finite k-min >= 0", o.k_min));

@@ -1,3 +1,4 @@
+#include "cli/row_filters.hpp"
 #include "cli/subcommand.hpp"
 #include "cli/exit_codes.hpp"
 
@@ -18,8 +19,7 @@ namespace {
 
 struct ExportFlags {
   std::string db = "granchain.db", table = "runs", format, output, where, engine;
-  std::map<std::string, std::string> lists;  // N, e, k, T0, T
-  std::map<std::string, CLI::Option*> list_options;
+  RowFilters filters;
 };
 
 int execute_export(const std::shared_ptr<ExportFlags>& impl_);
@@ -43,10 +43,7 @@ Subcommand add_export_command(CLI::App& app) {
   sub_->add_option("--table", o.table, "runs (default), profiles, collapse or realizations");
   sub_->add_option("--format", o.format, "csv or json; default from the --output extension, else csv");
   sub_->add_option("--output,-o", o.output, "write to FILE (whole or not at all) instead of standard output")->type_name("FILE");
-  for (const char* name : {"N", "e", "k", "T0", "T"})
-    o.list_options[name] = sub_->add_option(std::string("--") + name, o.lists[name],
-                                            fmt::format("only rows with {} in this list or range", name))
-                               ->type_name("LIST");
+  o.filters.add_to(sub_, "rows");
   sub_->add_option("--engine", o.engine, "only rows of these engines (comma list)")->type_name("LIST");
   sub_->add_option("--where", o.where, "only rows meeting this SQL condition on the exported columns")->type_name("SQL");
   return {sub_, [impl_] { return execute_export(impl_); }};
@@ -69,14 +66,12 @@ int execute_export(const std::shared_ptr<ExportFlags>& impl_) {
     if (f.empty()) f = o.output.size() >= 5 && o.output.substr(o.output.size() - 5) == ".json" ? "json" : "csv";
     if (f != "csv" && f != "json") throw InputError(fmt::format("--format = '{}' is not a format; valid: csv, json", f));
     format = f == "json" ? ExportFormat::Json : ExportFormat::Csv;
-    for (const auto& [name, opt] : o.list_options) {
-      if (opt->count() == 0) continue;
-      const bool collapse = sel.table == ExportTable::Collapse || sel.table == ExportTable::Realizations;
-      if (collapse && (name == "T0" || name == "T"))
+    const bool collapse = sel.table == ExportTable::Collapse || sel.table == ExportTable::Realizations;
+    for (const char* name : {"T0", "T"})
+      if (collapse && o.filters.given(name))
         throw InputError(fmt::format("--{}: collapse counts have no {}; valid filters for --table {}: N, e, k, engine, where",
                                      name, name, o.table));
-      sel.values[name] = parse_value_list(o.lists[name], "--" + name);
-    }
+    o.filters.apply(sel);
     sel.engines = parse_name_list(o.engine);
     sel.where = o.where;
     if (is_standard_output(o.output)) o.output.clear();
