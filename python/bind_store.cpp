@@ -140,19 +140,14 @@ py::list read_columns(const py::object& db, const std::string& table, const std:
   return out;
 }
 
-// The analysis `granchain analyze --json` writes for the runs selected by N, T0 and engine, with
+// The analysis `granchain analyze --json` writes for the runs selected by N, e, k, T0, T and engine, with
 // fits over k >= k_min (reproduce/store_analysis.hpp), as JSON text.
 std::string analyze_text(const py::object& db, const std::map<std::string, std::vector<double>>& values,
                          const std::vector<std::string>& engines, double k_min) {
   const std::string path = path_text(db, "--db");
   if (!(k_min >= 0 && std::isfinite(k_min)))
     throw InputError(fmt::format("--k-min = {} is out of range; valid range: finite k-min >= 0", k_min));
-  ExportSelection sel;
-  for (const auto& [name, list] : values) {
-    if (name != "N" && name != "T0") throw InputError(fmt::format("unknown filter '{}'; valid: N, T0", name));
-    sel.values[name] = list;
-  }
-  sel.engines = engines;
+  const ExportSelection sel = selection_of("runs", values, engines, "");
   std::string text;
   try {
     py::gil_scoped_release nogil;

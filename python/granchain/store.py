@@ -70,11 +70,12 @@ def export(db, table="runs", *, N=None, e=None, k=None, T0=None, T=None, engine=
     return out
 
 
-def analyze(db, *, N=None, T0=None, engine=None, k_min=0.0):
+def analyze(db, *, N=None, e=None, k=None, T0=None, T=None, engine=None, k_min=0.0):
     """The analysis of ``granchain analyze --db DB --json`` (docs/analysis.md), as a dict.
 
-    N, T0: a number, a sequence or the CLI's list text; engine: a name or a sequence; k_min: only
-    k >= k_min enters the fits. Keys: 'families' (per engine, N, T0: 'curves' with n_coll(k), the
+    N, e, k, T0, T: the runs analysed, each a number, a sequence or the CLI's list text (k =
+    '1e6:1e10:x10' fits one window of k); engine: a name or a sequence; k_min: only k >= k_min
+    enters the fits. Keys: 'families' (per engine, N, T0: 'curves' with n_coll(k), the
     regime, log and power fits, curvature, local exponents and the partially condensed state at
     the largest k; e_c1 with its estimate and classification boundary, both readings of e_c2, the
     mean exponent alpha_bar and its local exponents, the replica check), 'across_N' (the fits
@@ -82,7 +83,7 @@ def analyze(db, *, N=None, T0=None, engine=None, k_min=0.0):
     None. Raises ValueError for a missing or foreign store or a bad filter.
     """
     values = {}
-    for name, v in (("N", N), ("T0", T0)):
+    for name, v in (("N", N), ("e", e), ("k", k), ("T0", T0), ("T", T)):
         if v is not None:
             values[name] = _values(v, name)
     return json.loads(_granchain._analyze_text(db, values, _names(engine), float(k_min)))
@@ -130,7 +131,7 @@ class Store:
         self.path = _granchain._check_store(path)  # ValueError if it is not a readable store
 
     def analyze(self, **filters):
-        """The analysis of its driven-column runs: analyze(db, N=, T0=, engine=, k_min=)."""
+        """The analysis of its driven-column runs: analyze(db, N=, e=, k=, T0=, T=, engine=, k_min=)."""
         return analyze(self.path, **filters)
 
     def runs(self, **filters):

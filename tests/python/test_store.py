@@ -130,6 +130,14 @@ def test_analyze_gives_what_the_cli_analyze_json_gives(cli, tmp_path):
     assert all(len(c["n_coll_of_k"]) == 3 and c["classified"] for c in family["curves"])
     assert granchain.Store(db).analyze(N=3, k_min=1e4) == ours
     assert granchain.analyze(db, N=4)["families"] == []
+    # The filters of the CLI: one e, a window of k, a window length.
+    window = granchain.analyze(db, e=0.3, k="1e5:1e6:x10", T=100)
+    p = cli("analyze", "--db", db, "--e", "0.3", "--k", "1e5:1e6:x10", "--T", 100, "--json")
+    theirs = json.loads(p.stdout)
+    theirs.pop("provenance")
+    assert window == theirs
+    (curve,) = window["families"][0]["curves"]
+    assert len(curve["n_coll_of_k"]) == 2 and not curve["classified"]
     with pytest.raises(ValueError) as info:
         granchain.analyze(db, k_min=-1)
     assert str(info.value) == cli_error(cli("analyze", "--db", db, "--k-min", "-1"))
