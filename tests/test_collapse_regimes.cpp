@@ -502,3 +502,36 @@ TEST(CollapseRegimes, ReplicasThatScatterMoreThanTheirErrorsWidenTheCombinedErro
   ASSERT_EQ(r.families.size(), 1u);
   for (const auto& p : r.families[0].curves[0].n_coll_of_k) EXPECT_NEAR(p.error, 0.5 * std::sqrt(5.0 / 3.0), 1e-12);
 }
+
+// The line alpha = p log10 N + q through each interval's local exponent (Eq. alphafit read per
+// interval of k). With log10 n_coll = a x + b x^2 (x = log10 k) the local exponent over [x, x + 1]
+// is a + b (2x + 1) exactly; a = 0.1 L + 0.05 and b = 0.005 L - 0.002 (L = log10 N) make it
+// (0.1 + 0.005 (2x + 1)) L + (0.05 - 0.002 (2x + 1)). N = 300 has only k = 1e8 ... 1e10 (two
+// intervals, five N there), N = 400 only 1e10 ... 1e12 (intervals no other N has: no line).
+TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
+  std::vector<NcollRun> runs;
+  auto add = [&runs](int N, const std::vector<double>& ks) {
+    const double L = std::log10(N), a = 0.1 * L + 0.05, b = 0.005 * L - 0.002;
+    for (double e : {0.1, 0.2, 0.3, 0.4})
+      for (double k : ks) {
+        const double x = std::log10(k), n = 5.0 * std::pow(10.0, a * x + b * x * x);
+        runs.push_back({EngineKind::Exact, N, 1.0, e, k, n, 1e-4 * n, true});
+      }
+  };
+  for (int N : {25, 50, 100, 200}) add(N, kGrid);
+  add(300, {1e8, 1e9, 1e10});
+  add(400, {1e10, 1e11, 1e12});
+  const RegimeReport r = analyze_runs(runs, 1e6);
+  ASSERT_EQ(r.across.size(), 1u);
+  const auto& lines = r.across.front().local_alpha_lines;
+  ASSERT_EQ(lines.size(), 5u);  // 1e5-1e6 ... 1e9-1e10; 1e10-1e12 has N = 400 alone
+  for (const LocalAlphaLine& l : lines) {
+    const double x = std::log10(l.k1), s = 2 * x + 1;
+    EXPECT_NEAR(l.fit.slope, 0.1 + 0.005 * s, 1e-9) << l.k1;
+    EXPECT_NEAR(l.fit.intercept, 0.05 - 0.002 * s, 1e-9) << l.k1;
+    EXPECT_LT(l.fit.chi2, 1e-12) << l.k1;
+    const std::vector<int> expected = x >= 8 ? std::vector<int>{25, 50, 100, 200, 300} : std::vector<int>{25, 50, 100, 200};
+    EXPECT_EQ(l.Ns, expected) << l.k1;
+    EXPECT_EQ(l.fit.dof, static_cast<int>(expected.size()) - 2) << l.k1;
+  }
+}

@@ -186,6 +186,17 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       a.alpha_fit = fit_alpha_vs_log10_n(alpha_of_n);
       a.has_alpha_fit = true;
     }
+    std::map<std::pair<double, double>, std::vector<DataPoint>> local_of_n;  // by interval of k
+    for (const FamilyAnalysis* f : fams)
+      for (const LocalExponent& l : f->local_alpha_bar)
+        if (std::isfinite(l.alpha) && l.error > 0) local_of_n[{l.k1, l.k2}].push_back({static_cast<double>(f->N), l.alpha, l.error});
+    for (auto& [k, pts] : local_of_n) {
+      if (pts.size() < 3) continue;
+      std::sort(pts.begin(), pts.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
+      LocalAlphaLine line{k.first, k.second, {}, fit_alpha_vs_log10_n(pts)};
+      for (const DataPoint& p : pts) line.Ns.push_back(static_cast<int>(p.x));
+      a.local_alpha_lines.push_back(std::move(line));
+    }
     report.across.push_back(a);
   }
   return report;

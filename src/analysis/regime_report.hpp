@@ -79,6 +79,15 @@ struct FamilyAnalysis {  // one (engine, drive, N, kT0)
   double replicas_worst_e = 0, replicas_worst_k = 0;
 };
 
+// The line alpha = p log10 N + q (Eq. alphafit) through the local exponents of one interval of k
+// (FamilyAnalysis::local_alpha_bar) at every N that has it: how the slope depends on where in k the
+// exponent is read. Only intervals measured at three N or more.
+struct LocalAlphaLine {
+  double k1 = 0, k2 = 0;
+  std::vector<int> Ns;  // ascending
+  LineFit fit;
+};
+
 struct AcrossN {  // one (engine, drive, kT0), over N
   EngineKind engine = EngineKind::Exact;
   DriveSpec drive;
@@ -93,6 +102,7 @@ struct AcrossN {  // one (engine, drive, kT0), over N
   bool has_A1_boundary = false, has_A2_sign = false;
   InverseNFit A1_boundary, A2_sign;
   LineFit alpha_fit;   // alpha bar against log10 N
+  std::vector<LocalAlphaLine> local_alpha_lines;  // k1 ascending
 };
 
 struct RegimeReport {

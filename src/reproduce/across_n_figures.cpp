@@ -251,17 +251,12 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log
   out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
   // The same line through the local exponents of each interval of k: how Eq. alphafit's slope
   // depends on where in k the exponent is read.
-  std::map<std::pair<double, double>, std::vector<analysis::DataPoint>> by_interval;
-  for (const auto& f : s.a.report.families)
-    for (const auto& l : f.local_alpha_bar)
-      if (std::isfinite(l.alpha) && l.error > 0) by_interval[{l.k1, l.k2}].push_back({static_cast<double>(f.N), l.alpha, l.error});
   std::string locals;
-  for (const auto& [k, pts] : by_interval) {
-    if (pts.size() < 3) continue;
-    const analysis::LineFit l = analysis::fit_alpha_vs_log10_n(pts);
-    locals += fmt::format("| {}–{} | {} | {} | {} | {:.1f} / {} |\n", power_of_ten_text(k.first), power_of_ten_text(k.second), pts.size(),
-                          plus_minus(l.slope, l.slope_error), plus_minus(l.intercept, l.intercept_error), l.chi2, l.dof);
-  }
+  if (x)
+    for (const analysis::LocalAlphaLine& l : x->local_alpha_lines)
+      locals += fmt::format("| {}–{} | {} | {} | {} | {:.1f} / {} |\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2), l.Ns.size(),
+                            plus_minus(l.fit.slope, l.fit.slope_error), plus_minus(l.fit.intercept, l.fit.intercept_error), l.fit.chi2,
+                            l.fit.dof);
   if (!locals.empty())
     out.markdown += "\nThe line α = p log10 N + q through the local exponents of each interval of k (mean over e = 0.1 … 0.4), "
                     "the paper's p = 0.18, q = −0.054:\n\n| k | N | p | q | χ² / dof |\n|---|---|---|---|---|\n" + locals;

@@ -1,6 +1,7 @@
 #include "reproduce/store_analysis.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <map>
@@ -267,6 +268,11 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                                                                                    {"intercept", a.alpha_fit.intercept},
                                                                                    {"intercept_err", a.alpha_fit.intercept_error}}
                                                                   : nlohmann::json(nullptr)}});
+    nlohmann::json lines = nlohmann::json::array();
+    for (const analysis::LocalAlphaLine& l : a.local_alpha_lines)
+      lines.push_back({{"k1", l.k1}, {"k2", l.k2}, {"N", l.Ns}, {"slope", l.fit.slope}, {"slope_err", l.fit.slope_error},
+                       {"intercept", l.fit.intercept}, {"intercept_err", l.fit.intercept_error}, {"chi2", l.fit.chi2}, {"dof", l.fit.dof}});
+    j["across_N"].back()["local_alpha_vs_log10_N"] = std::move(lines);
     put_drive(j["across_N"].back(), a.drive);
   }
   return a;
@@ -370,7 +376,7 @@ std::string analysis_text(const StoreAnalysis& a) {
     }
   }
   for (const auto& a : a.report.across) {
-    if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit)) continue;
+    if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit || !a.local_alpha_lines.empty())) continue;
     out += fmt::format("\nacross N (engine {}{}, T0 = {:g}):", engine_name(a.engine), drive_label(a.drive), a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
@@ -382,6 +388,10 @@ std::string analysis_text(const StoreAnalysis& a) {
       out += fmt::format("  alpha bar = ({}) log10 N + ({})", plus_minus(a.alpha_fit.slope, a.alpha_fit.slope_error),
                  plus_minus(a.alpha_fit.intercept, a.alpha_fit.intercept_error));
     out += fmt::format("\n");
+    for (const analysis::LocalAlphaLine& l : a.local_alpha_lines)
+      out += fmt::format("  local alpha {}–{} = ({}) log10 N + ({}), chi2/dof = {:.1f}/{} over N = {}\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2),
+                         plus_minus(l.fit.slope, l.fit.slope_error), plus_minus(l.fit.intercept, l.fit.intercept_error), l.fit.chi2,
+                         l.fit.dof, fmt::join(l.Ns, ", "));
   }
   return out;
 }
