@@ -478,31 +478,6 @@ TEST(CollapseRegimes, AcrossNFitsTheBoundaryAndTheCurvatureSignChange) {
   EXPECT_NEAR(a.A2.A, 3.1, 1e-9);
 }
 
-// Replicas of one point: the weighted mean, with the error from the replicas where they scatter
-// more than their blocking errors (Birge ratio), never less than the blocking error.
-TEST(CollapseRegimes, ReplicasThatScatterMoreThanTheirErrorsWidenTheCombinedError) {
-  // Four runs with errors 1 agreeing within them: chi^2 = (1.5^2 + 0.5^2) * 2 = 5 on 3 dof -> x sqrt(5/3).
-  const auto [mean, err] = combine_replicas({{8.5, 1.0}, {9.5, 1.0}, {10.5, 1.0}, {11.5, 1.0}});
-  EXPECT_DOUBLE_EQ(mean, 10.0);
-  EXPECT_NEAR(err, 0.5 * std::sqrt(5.0 / 3.0), 1e-12);
-  // The same runs with errors 2: chi^2 = 1.25 on 3 dof, below 1 per dof: the blocking error stands.
-  EXPECT_NEAR(combine_replicas({{8.5, 2.0}, {9.5, 2.0}, {10.5, 2.0}, {11.5, 2.0}}).second, 1.0, 1e-12);
-  // One run is itself; unequal errors weight the mean; two or three runs keep the blocking error
-  // however they scatter (too few degrees of freedom to estimate it).
-  EXPECT_EQ(combine_replicas({{3.0, 0.5}}), std::make_pair(3.0, 0.5));
-  const auto two = combine_replicas({{1.0, 1.0}, {2.0, 0.5}});
-  EXPECT_NEAR(two.first, (1.0 + 4 * 2.0) / 5, 1e-12);
-  EXPECT_NEAR(two.second, 1.0 / std::sqrt(5.0), 1e-12);
-  EXPECT_NEAR(combine_replicas({{0.0, 1.0}, {10.0, 1.0}, {20.0, 1.0}}).second, 1.0 / std::sqrt(3.0), 1e-12);
-  // Through the analysis: n_coll(k) of a point with scattering replicas carries the wider error.
-  std::vector<NcollRun> runs;
-  for (double k : kGrid)
-    for (double dx : {-1.5, -0.5, 0.5, 1.5}) runs.push_back({EngineKind::Exact, 25, 1.0, 0.5, k, 100.0 + dx, 1.0, true});
-  const RegimeReport r = analyze_runs(runs, 1e6);
-  ASSERT_EQ(r.families.size(), 1u);
-  for (const auto& p : r.families[0].curves[0].n_coll_of_k) EXPECT_NEAR(p.error, 0.5 * std::sqrt(5.0 / 3.0), 1e-12);
-}
-
 // The line alpha = p log10 N + q through each interval's local exponent (Eq. alphafit read per
 // interval of k). With log10 n_coll = a x + b x^2 (x = log10 k) the local exponent over [x, x + 1]
 // is a + b (2x + 1) exactly; a = 0.1 L + 0.05 and b = 0.005 L - 0.002 (L = log10 N) make it

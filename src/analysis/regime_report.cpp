@@ -19,27 +19,30 @@ bool table1_e(double e) {
 
 }  // namespace
 
-std::pair<double, double> combine_replicas(const std::vector<std::pair<double, double>>& runs) {
-  double w = 0, wn = 0;
-  for (const auto& [n, err] : runs) {
-    const double wi = 1.0 / (err * err);
-    w += wi;
-    wn += wi * n;
+std::pair<double, double> combine_replicas(const std::vector<PointRun>& runs) {
+  const bool windows_known = std::all_of(runs.begin(), runs.end(), [](const PointRun& r) { return r.T > 0; });
+  const auto weight = [&](const PointRun& r) { return windows_known ? r.T : 1.0; };
+  double w = 0, wn = 0, blocking2 = 0;
+  for (const PointRun& r : runs) {
+    w += weight(r);
+    wn += weight(r) * r.n_coll;
+    blocking2 += weight(r) * weight(r) * r.error * r.error;
   }
   const double mean = wn / w;
-  double error = 1.0 / std::sqrt(w);
+  double error = std::sqrt(blocking2) / w;
   if (runs.size() >= kReplicasForScatter) {
-    double chi2 = 0;
-    for (const auto& [n, err] : runs) chi2 += (n - mean) * (n - mean) / (err * err);
-    error *= std::max(1.0, std::sqrt(chi2 / static_cast<double>(runs.size() - 1)));
+    double scatter2 = 0;
+    for (const PointRun& r : runs) scatter2 += weight(r) * weight(r) * (r.n_coll - mean) * (r.n_coll - mean);
+    const double m = static_cast<double>(runs.size());
+    error = std::max(error, std::sqrt(m / (m - 1) * scatter2) / w);
   }
   return {mean, error};
 }
 
 RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
-  // (engine, drive, N, kT0) -> e -> k -> the runs' (n_coll, error), combined below by weighted mean
+  // (engine, drive, N, kT0) -> e -> k -> the runs of the point, combined below by combine_replicas
   using Key = std::tuple<EngineKind, DriveSpec, int, double>;
-  using Runs = std::vector<std::pair<double, double>>;
+  using Runs = std::vector<PointRun>;
   std::map<Key, std::map<double, std::map<double, Runs>>> groups;
   std::map<Key, std::map<double, std::vector<double>>> unsettled;  // non-stationary runs' k per e
   RegimeReport report;
@@ -79,7 +82,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       report.excluded.push_back({r.run_id, r.engine, r.N, r.kT0, r.e, r.k, why, r.drive});
       continue;
     }
-    groups[{r.engine, r.drive, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err});
+    groups[{r.engine, r.drive, r.N, r.kT0}][r.e][r.k].push_back({r.n_coll, r.n_coll_err, r.T});
     if (!r.stationary) unsettled[{r.engine, r.drive, r.N, r.kT0}][r.e].push_back(r.k);
   }
   report.k_min = k_min;
@@ -127,11 +130,12 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
       fam.e_c2_sign = e_c2_from_curvature_sign(curvatures, 0.0061, 2.0 / fam.N);
     }
     {
-      std::vector<Runs> point_groups;  // the runs of each (e, k), for the replica check
+      std::vector<std::vector<std::pair<double, double>>> point_groups;  // each (e, k)'s (n_coll, error), for the replica check
       std::vector<std::pair<double, double>> where;
       for (const auto& [e, by_k] : by_e)
         for (const auto& [k, point_runs] : by_k) {
-          point_groups.push_back(point_runs);
+          point_groups.emplace_back();
+          for (const PointRun& r : point_runs) point_groups.back().push_back({r.n_coll, r.error});
           where.push_back({e, k});
         }
       fam.replicas = replica_scatter(point_groups);

@@ -16,13 +16,24 @@
 
 namespace granchain::analysis {
 
-// Independent runs (replicas) of one point as (n_coll, error): their weighted mean, and from
-// kReplicasForScatter runs on its error scaled by the Birge ratio sqrt(chi^2 / (m - 1)) where the
-// replicas scatter more than their blocking errors say (never scaled down): the error then comes
-// from the replicas. Fewer runs keep the blocking error: with 1 or 2 degrees of freedom the ratio is
-// uncertain by 50 % or more, and taking it only where it exceeds 1 would widen right errors on average.
+// One run of a point as combine_replicas takes it: its n_coll, blocking error and measuring window.
+struct PointRun {
+  double n_coll = 0, error = 0;
+  double T = 0;  // the window; <= 0 (unknown) in any run of a point weights all its runs equally
+};
+
+// Independent runs (replicas, or windows of several T) of one point: the pooled rate
+// n = sum_i T_i n_i / sum_i T_i, the collisions of all windows over their total time, with the
+// blocking errors propagated, sqrt(sum_i T_i^2 err_i^2) / sum_i T_i, and from kReplicasForScatter
+// runs on the error of that mean from the runs' own scatter, sqrt(m / (m - 1) sum_i T_i^2 (n_i -
+// n)^2) / sum_i T_i, where it is the larger (never scaled down). Weights by window, not by 1/err^2:
+// where collisions come in bursts (the near-solid columns of docs/columns.md) a window's blocking
+// error grows with its count, and inverse-variance weights would pull the mean toward the quiet
+// windows. With equal windows and errors the error is the Birge-scaled one. Fewer runs keep the
+// blocking error: with 1 or 2 degrees of freedom the scatter is uncertain by 50 % or more, and
+// taking it only where it exceeds the blocking error would widen right errors on average.
 inline constexpr std::size_t kReplicasForScatter = 4;
-std::pair<double, double> combine_replicas(const std::vector<std::pair<double, double>>& runs);
+std::pair<double, double> combine_replicas(const std::vector<PointRun>& runs);
 
 // One stored run's result (several runs of one point are combined by combine_replicas).
 struct NcollRun {
