@@ -28,6 +28,7 @@ py::dict estimate_halves(const StationarityCheck& c) {
   d["second"] = c.second.value;
   d["second_err"] = c.second.error;
   d["z"] = c.z;
+  d["z_settled"] = c.z_settled;
   d["stationary"] = c.stationary;
   return d;
 }

@@ -164,6 +164,46 @@ TEST(Blocking, HalvesCheckFindsADrift) {
   EXPECT_LE(found_small, 100);
 }
 
+// A relaxation at the start of the window: unit white noise of n points plus 3 exp(-64 t / n),
+// gone after a few per cent of the window. It raises the first half's mean by 3/32 = 0.094 while
+// a settled half's standard error is 1/sqrt(n/2) = 0.011, so z_settled = -0.094 / (sqrt(2) 0.011)
+// = -6.0 on average (beyond 3 in all but about 1 run in 1000). The first half's blocked error
+// takes the relaxation for spread (its first block differs), so the symmetric z stays small: it
+// alone finds the relaxation in well under half of the runs.
+TEST(Blocking, HalvesCheckFindsAnEarlyRelaxation) {
+  const long n = 1 << 14;
+  int found = 0, found_by_z = 0;
+  double z_settled = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    Rng r(seed);
+    BinnedSums s(1024, 2);
+    for (long t = 0; t < n; ++t) {
+      double* b = s.bin(static_cast<int>(t * 1024 / n));
+      b[0] += 1.0;
+      b[1] += r.normal() + 3.0 * std::exp(-64.0 * double(t) / n);
+    }
+    const StationarityCheck c = halves_check(s, mean_of);
+    found += !c.stationary;
+    found_by_z += std::abs(c.z) > 3.0;
+    z_settled += c.z_settled / 200;
+  }
+  std::printf("relaxation: %d of 200 found, %d by the symmetric z alone; mean z_settled %.2f\n", found, found_by_z, z_settled);
+  EXPECT_GE(found, 195);
+  EXPECT_LE(found_by_z, 100);
+  EXPECT_NEAR(z_settled, -6.0, 0.5);  // the mean of 200 deviates of unit spread: within 0.5 by far
+}
+
+// A stored run's halves judged again give what the check gave on its bins.
+TEST(Blocking, JudgingStoredHalvesGivesTheSameVerdict) {
+  for (std::uint64_t seed = 1; seed <= 50; ++seed) {
+    const StationarityCheck c = halves_check(ar1_bins(0.9, 1 << 12, 256, seed), mean_of);
+    const StationarityCheck j = judge_halves(c.first, c.second);
+    EXPECT_EQ(j.z, c.z);
+    EXPECT_EQ(j.z_settled, c.z_settled);
+    EXPECT_EQ(j.stationary, c.stationary);
+  }
+}
+
 // No spread at all (every bin the same): stationary exactly when the halves are equal.
 TEST(Blocking, HalvesCheckWithoutSpreadComparesTheValues) {
   BinnedSums flat(64, 2), step(64, 2);

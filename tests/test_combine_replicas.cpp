@@ -84,3 +84,46 @@ TEST(CombineReplicas, BurstyWindowsGiveAnUnbiasedMeanAndErrorsThatCover) {
   // The weights the pooled rate replaces are biased by many standard errors on the same windows.
   EXPECT_LT(inverse_variance_sum / points, mu - 20 * se);
 }
+
+// A window that had not settled: where a point has stationary runs after a longer transient, its
+// non-stationary runs after a shorter one are left out, named, with the reason. A non-stationary
+// run beside stationary runs of its own transient stays in its point (a settled column fails the
+// check now and then), marked; so does one whose point has no settled run at all.
+TEST(CombineReplicas, SettledRunsWithALongerTransientSupersedeUnsettledOnes) {
+  std::vector<NcollRun> runs;
+  std::int64_t id = 0;
+  const auto add = [&](double k, double n, bool stationary, double transient) {
+    NcollRun r{EngineKind::Exact, 200, 1.0, 0.2, k, n, 1.0, stationary, ++id};
+    r.transient = transient;
+    r.T = 200;
+    runs.push_back(r);
+  };
+  for (double k : kGrid) {
+    if (k == 1e5) {  // two unsettled windows (biased high) and four settled ones after 200
+      add(k, 130.0, false, 20);
+      add(k, 126.0, false, 20);
+      for (double dx : {-1.5, -0.5, 0.5, 1.5}) add(k, 100.0 + dx, true, 200);
+    } else if (k == 1e6) {  // a settled point whose third run fails the check by chance
+      add(k, 110.0, true, 20);
+      add(k, 110.5, true, 20);
+      add(k, 113.0, false, 20);
+    } else if (k == 1e7) {  // no settled run: the unsettled one is all there is
+      add(k, 120.0, false, 20);
+    } else {
+      add(k, 100.0 + std::log10(k), true, 20);
+    }
+  }
+  const RegimeReport r = analyze_runs(runs, 1e6);
+  ASSERT_EQ(r.excluded.size(), 2u);
+  for (const ExcludedRun& x : r.excluded) {
+    EXPECT_EQ(x.k, 1e5);
+    EXPECT_NE(x.reason.find("had not settled"), std::string::npos) << x.reason;
+    EXPECT_NE(x.reason.find("after 200"), std::string::npos) << x.reason;
+  }
+  ASSERT_EQ(r.families.size(), 1u);
+  const CurveAnalysis& c = r.families[0].curves[0];
+  EXPECT_DOUBLE_EQ(c.n_coll_of_k[0].y, 100.0);                     // the settled runs alone
+  EXPECT_DOUBLE_EQ(c.n_coll_of_k[1].y, (110.0 + 110.5 + 113.0) / 3);  // all three kept
+  EXPECT_DOUBLE_EQ(c.n_coll_of_k[2].y, 120.0);
+  EXPECT_EQ(c.non_stationary_k, (std::vector<double>{1e6, 1e7}));
+}

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -171,6 +173,74 @@ TEST(ResultsStore, VerdictAndCpuTimeAreColumnsAndVersionTwoStoresGainThem) {
                              "AND cpu_seconds = json_extract(result_json, '$.cost.cpu_seconds')"), 1.0);
   // The export is the same before and after: the verdict and the CPU time last, from the JSON or the columns.
   EXPECT_EQ(export_results(path, ExportSelection{}, ExportFormat::Csv), exported);
+}
+
+// A run stored under an earlier rule (its column and JSON say stationary) whose stored halves
+// the current rule fails (the second half 5 of its errors below the first, where both halves'
+// errors together allowed it): every reader sees the current verdict (export, the stored rows,
+// a run read back), and a store opened for writing, or merged, brings its column up to date.
+TEST(ResultsStore, StoredVerdictsAreJudgedByTheCurrentRule) {
+  TempDir dir;
+  const std::string path = (dir.path / "old.db").string(), merged = (dir.path / "merged.db").string();
+  const RunResult r = small_run();
+  {
+    ResultsStore store(path);
+    store.insert_run(r);
+    RunSpec second = r.spec;
+    second.seed = 2;
+    store.insert_run(run_driven_column(second));
+    // Run 1 rewritten as an earlier rule judged it: a first half with a wide error (a relaxation),
+    // a settled second half 5 of its own errors below, z = -1.6 but z_settled = -3.5.
+    ASSERT_EQ(sqlite3_exec(store.handle(),
+                           "UPDATE runs SET stationary = 1, result_json = json_set(result_json, "
+                           "'$.stationarity.n_coll.first', 10.0, '$.stationarity.n_coll.first_err', 3.0, "
+                           "'$.stationarity.n_coll.second', 9.5, '$.stationarity.n_coll.second_err', 0.1, "
+                           "'$.stationarity.mean_height.first', 1.0, '$.stationarity.mean_height.first_err', 0.1, "
+                           "'$.stationarity.mean_height.second', 1.0, '$.stationarity.mean_height.second_err', 0.1, "
+                           "'$.stationarity.stationary', json('true')) WHERE id = 1",
+                           nullptr, nullptr, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(store.handle(),
+                           "UPDATE runs SET stationary = 1, result_json = json_set(result_json, "
+                           "'$.stationarity.n_coll.first', 10.0, '$.stationarity.n_coll.first_err', 0.1, "
+                           "'$.stationarity.n_coll.second', 10.0, '$.stationarity.n_coll.second_err', 0.1, "
+                           "'$.stationarity.mean_height.first', 1.0, '$.stationarity.mean_height.first_err', 0.1, "
+                           "'$.stationarity.mean_height.second', 1.0, '$.stationarity.mean_height.second_err', 0.1) WHERE id = 2",
+                           nullptr, nullptr, nullptr), SQLITE_OK);
+  }
+  fs::copy_file(path, dir.path / "copy.db");
+  const std::string copy = (dir.path / "copy.db").string();
+  // Read without writing: the column still holds the old verdict, the readers the current one.
+  ExportSelection sel;
+  sel.where = "stationary = 0";
+  const std::string csv = export_results(path, sel, ExportFormat::Csv);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;  // the header and run 1
+  {
+    ResultsStore reader(path, ResultsStore::Access::ReadOnly);
+    EXPECT_EQ(query_double(reader.handle(), "SELECT sum(stationary) FROM runs"), 2.0);  // untouched
+    const auto back_1 = reader.read_back_run(r.spec);
+    ASSERT_TRUE(back_1.has_value());
+    const RunResult& back = back_1->result;
+    EXPECT_FALSE(back.stationary());
+    EXPECT_NEAR(back.n_coll_halves.z, -0.5 / std::hypot(3.0, 0.1), 1e-12);
+    EXPECT_NEAR(back.n_coll_halves.z_settled, -0.5 / (std::sqrt(2.0) * 0.1), 1e-12);
+    RunSpec second = r.spec;
+    second.seed = 2;
+    EXPECT_TRUE(reader.read_back_run(second)->result.stationary());
+  }
+  // Opened for writing: run 1's column brought to 0, run 2's left as it was.
+  {
+    ResultsStore writer(path);
+    EXPECT_EQ(query_double(writer.handle(), "SELECT stationary FROM runs WHERE id = 1"), 0.0);
+    EXPECT_EQ(query_double(writer.handle(), "SELECT stationary FROM runs WHERE id = 2"), 1.0);
+  }
+  // Merged from the untouched copy: the target judges the runs it takes; the source is not changed.
+  merge_stores(merged, {copy});
+  {
+    ResultsStore target(merged, ResultsStore::Access::ReadOnly);
+    EXPECT_EQ(query_double(target.handle(), "SELECT count(*) FROM runs WHERE stationary = 0"), 1.0);
+    ResultsStore source(copy, ResultsStore::Access::ReadOnly);
+    EXPECT_EQ(query_double(source.handle(), "SELECT sum(stationary) FROM runs"), 2.0);
+  }
 }
 
 // A store of schema version 1 (tests/data/store_version_1.db: exact, hard with tc = 1e-6 and

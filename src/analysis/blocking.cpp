@@ -106,19 +106,24 @@ StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, doubl
     std::copy_n(sums.bin(i), c, a.bin(i));
     std::copy_n(sums.bin(half + i), c, b.bin(i));
   }
-  StationarityCheck out;
   // Halves of 8 bins or more: at least 4 blocks at the top level of each blocking curve.
-  out.first = blocked_estimate(a, f, std::min(16, std::max(2, half / 2)));
-  out.second = blocked_estimate(b, f, std::min(16, std::max(2, half / 2)));
-  const double err = std::hypot(out.first.error, out.second.error);
-  const double diff = out.second.value - out.first.value;
-  if (err > 0 && std::isfinite(err)) {
-    out.z = diff / err;
-    out.stationary = std::abs(out.z) <= z_max;
-  } else {
-    out.z = diff == 0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), diff);
-    out.stationary = diff == 0;
-  }
+  return judge_halves(blocked_estimate(a, f, std::min(16, std::max(2, half / 2))),
+                      blocked_estimate(b, f, std::min(16, std::max(2, half / 2))), z_max);
+}
+
+StationarityCheck judge_halves(const Estimate& first, const Estimate& second, double z_max) {
+  StationarityCheck out;
+  out.first = first;
+  out.second = second;
+  const double diff = second.value - first.value;
+  // The difference over an error; with no spread at all only equal halves pass.
+  const auto distance = [diff](double err) {
+    if (err > 0 && std::isfinite(err)) return diff / err;
+    return diff == 0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), diff);
+  };
+  out.z = distance(std::hypot(first.error, second.error));
+  out.z_settled = distance(std::sqrt(2.0) * second.error);
+  out.stationary = std::abs(out.z) <= z_max && std::abs(out.z_settled) <= z_max;
   return out;
 }
 

@@ -59,17 +59,26 @@ std::vector<BlockingLevel> blocking_curve(const BinnedSums& sums, const Estimato
 Estimate blocked_estimate(const BinnedSums& sums, const Estimator& f, int min_blocks = 16);
 
 // Is the time average stationary over the window? The estimate on the first and on the second
-// half of the bins, each with its blocked error; z = (second - first) / sqrt(err1^2 + err2^2).
-// A window that starts before the system has settled, or over which it drifts, shows as |z|
-// beyond what the errors allow: stationary means |z| <= z_max (3: a settled system fails one run in
-// 370 when the errors are right). Where both halves have no spread (zero errors, e.g. no event at
-// all) the halves must be equal.
+// half of the bins, each with its blocked error, and their difference measured twice:
+//   z         = (second - first) / sqrt(err1^2 + err2^2), both halves' own errors;
+//   z_settled = (second - first) / (sqrt(2) err2), against the spread the difference would have if
+//               the first half fluctuated as the second does.
+// A window that starts before the column has settled holds a relaxation in its first half; the
+// blocked error of that half grows with the drift itself (its blocks differ), so z stays small
+// while z_settled sees the drift. Stationary means |z| <= z_max and |z_settled| <= z_max (3: a
+// settled system fails a few runs in 1000 when the errors are right, the two tests being nearly
+// the same there). Where an error is zero (no spread, e.g. no event at all) the halves must be
+// equal.
 struct StationarityCheck {
   Estimate first, second;
   double z = 0.0;
+  double z_settled = 0.0;
   bool stationary = true;
 };
 StationarityCheck halves_check(const BinnedSums& sums, const Estimator& f, double z_max = 3.0);
+// The verdict on two halves already estimated (as a stored run keeps them): z, z_settled and
+// stationary as halves_check gives them.
+StationarityCheck judge_halves(const Estimate& first, const Estimate& second, double z_max = 3.0);
 
 // Largest power of two <= min(limit, n), at least 1.
 int power_of_two_bins(long long n, int limit);

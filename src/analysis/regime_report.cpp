@@ -63,12 +63,26 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     const auto [it, fresh] = kept.emplace(r.trajectory, i);
     if (!fresh && r.T > runs[it->second].T) it->second = i;
   }
+  // Per point, the longest transient after which a usable run's window was stationary.
+  using PointKey = std::tuple<EngineKind, DriveSpec, int, double, double, double>;
+  std::map<PointKey, std::pair<double, std::int64_t>> settled_after;  // transient, a run with it
+  for (const NcollRun& r : runs) {
+    if (!r.stationary || !unusable(r).empty()) continue;
+    const auto [it, fresh] = settled_after.emplace(PointKey{r.engine, r.drive, r.N, r.kT0, r.e, r.k}, std::make_pair(r.transient, r.run_id));
+    if (!fresh && r.transient > it->second.first) it->second = {r.transient, r.run_id};
+  }
   // Results identical to the last bit at one point: not two independent samples, whatever their
   // seeds say (zero scatter); the first is kept.
   std::map<std::tuple<EngineKind, DriveSpec, int, double, double, double, double, double>, std::size_t> first_result;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
     std::string why = unusable(r);
+    if (why.empty() && !r.stationary) {
+      const auto s = settled_after.find(PointKey{r.engine, r.drive, r.N, r.kT0, r.e, r.k});
+      if (s != settled_after.end() && s->second.first > r.transient)
+        why = fmt::format("its window had not settled (not stationary after a transient of {:g}; run {} is, after {:g})", r.transient,
+                          s->second.second, s->second.first);
+    }
     if (why.empty() && !r.trajectory.empty() && kept.at(r.trajectory) != i)
       why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",
                         runs[kept.at(r.trajectory)].run_id, r.T == runs[kept.at(r.trajectory)].T ? "" : ", a shorter window");

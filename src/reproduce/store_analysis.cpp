@@ -188,6 +188,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     run.run_id = row.id;
     run.trajectory = trajectory_key(row.spec);  // config/run_key.hpp
     run.T = row.spec.T;
+    run.transient = row.spec.transient;
     runs.push_back(run);
   }
   a.runs = runs.size();

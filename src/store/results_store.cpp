@@ -14,6 +14,7 @@
 #include "store/run_json.hpp"
 #include "config/run_key.hpp"
 #include "store/sqlite_statement.hpp"
+#include "store/stationarity_verdicts.hpp"
 #include "store/store_schema.hpp"
 #include "version.hpp"
 
@@ -195,6 +196,7 @@ void ResultsStore::open_read_write() {
     throw StoreError(fmt::format("--db: cannot open '{}': {}", path, msg));
   }
   sqlite3_busy_timeout(db_, 60000);  // concurrent writers (parallel runs) wait instead of failing
+  register_stationarity_function(db_);
   exec("PRAGMA foreign_keys = OFF");  // while a version-1 store's runs table is rebuilt
   exec("BEGIN IMMEDIATE");
   try {
@@ -202,6 +204,7 @@ void ResultsStore::open_read_write() {
     if (schema_version() == 1) migrate_from_version_1();
     if (schema_version() == 2) migrate_from_version_2();
     exec(missing_runs_columns_sql(db_).c_str());
+    exec(kRejudgeStoredRuns);  // verdicts stored under an earlier rule (store/stationarity_verdicts.hpp)
     exec("COMMIT");
     exec("PRAGMA foreign_keys = ON");
   } catch (...) {

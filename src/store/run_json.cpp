@@ -1,5 +1,6 @@
 #include "store/run_json.hpp"
 
+#include <cmath>
 #include <limits>
 
 #include "config/run_options.hpp"
@@ -65,7 +66,7 @@ json run_result_to_json(const RunResult& r) {
               {"cost", {{"steps", r.steps}, {"events", r.events}, {"wall_seconds", r.wall_seconds}, {"cpu_seconds", r.cpu_seconds}}}};
   auto halves = [](const StationarityCheck& c) {
     return json{{"first", c.first.value}, {"first_err", c.first.error}, {"second", c.second.value},
-                {"second_err", c.second.error}, {"z", c.z}, {"stationary", c.stationary}};
+                {"second_err", c.second.error}, {"z", c.z}, {"z_settled", c.z_settled}, {"stationary", c.stationary}};
   };
   j["stationarity"] = {{"stationary", r.stationary()},
                        {"n_coll", halves(r.n_coll_halves)},
@@ -159,21 +160,24 @@ RunResult run_result_from_json(const json& j) {
                                          Estimate{real_or(q, "K", nan), real_or(q, "K_err", nan), 0, q.value("K_plateau", true)}});
   }
   // Runs stored before the stationarity check have none: they read back as stationary with z = NaN.
+  // Every other run is judged by the current rule from its stored halves (analysis/blocking.hpp),
+  // whatever verdict it was stored with.
   auto halves = [nan](const json& h) {
-    StationarityCheck c;
-    c.first.value = real_or(h, "first", nan);
-    c.first.error = real_or(h, "first_err", nan);
-    c.second.value = real_or(h, "second", nan);
-    c.second.error = real_or(h, "second_err", nan);
-    c.z = real_or(h, "z", nan);
-    c.stationary = h.at("stationary").get<bool>();
-    return c;
+    const Estimate first{real_or(h, "first", nan), real_or(h, "first_err", nan)};
+    const Estimate second{real_or(h, "second", nan), real_or(h, "second_err", nan)};
+    if (std::isnan(first.value) || std::isnan(second.value)) {
+      StationarityCheck c;
+      c.z = c.z_settled = nan;
+      c.stationary = h.at("stationary").get<bool>();
+      return c;
+    }
+    return judge_halves(first, second);
   };
   if (j.contains("stationarity")) {
     r.n_coll_halves = halves(j.at("stationarity").at("n_coll"));
     r.height_halves = halves(j.at("stationarity").at("mean_height"));
   } else {
-    r.n_coll_halves.z = r.height_halves.z = nan;
+    r.n_coll_halves.z = r.height_halves.z = r.n_coll_halves.z_settled = r.height_halves.z_settled = nan;
   }
   if (j.contains("blocking")) {  // runs stored before the curves were kept have none
     r.n_coll_blocking = blocking_curve_from_json(j.at("blocking").at("n_coll"));

@@ -8,14 +8,16 @@
 
 #include "config/run_options.hpp"
 #include "store/sqlite_statement.hpp"
+#include "store/stationarity_verdicts.hpp"
 
 namespace granchain {
 
 namespace {
 
-// The runs with their points; stationary (the window's verdict, 1 or 0) and cpu_seconds (the
-// run's thread CPU time) come last, NULL for runs stored before they were recorded. A store older
-// than version 3 keeps them only in each run's JSON.
+// The runs with their points; stationary (the window's verdict by the current rule, 1 or 0:
+// store/stationarity_verdicts.hpp) and cpu_seconds (the run's thread CPU time) come last, NULL for
+// runs stored before they were recorded. A store older than version 3 keeps them only in each
+// run's JSON.
 std::string runs_sql(sqlite3* db) {
   std::string columns;
   bool has_verdicts = false;
@@ -25,10 +27,8 @@ std::string runs_sql(sqlite3* db) {
     if (c == "stationary" || c == "cpu_seconds") has_verdicts = true;
     else columns += (columns.empty() ? "r." : ", r.") + c;
   }
-  return "SELECT " + columns + ", p.point_key, p.sweep_seed, p.replica, " +
-         (has_verdicts ? std::string("r.stationary, r.cpu_seconds ")
-                       : std::string("json_extract(r.result_json, '$.stationarity.stationary') AS stationary, "
-                                     "json_extract(r.result_json, '$.cost.cpu_seconds') AS cpu_seconds ")) +
+  return "SELECT " + columns + ", p.point_key, p.sweep_seed, p.replica, " + current_stationary_sql("r") + " AS stationary, " +
+         (has_verdicts ? std::string("r.cpu_seconds ") : std::string("json_extract(r.result_json, '$.cost.cpu_seconds') AS cpu_seconds ")) +
          "FROM runs r LEFT JOIN run_points p ON p.run_id = r.id";
 }
 
@@ -131,6 +131,7 @@ SelectedRows::SelectedRows(const std::string& db_path, const ExportSelection& se
   }
   impl_->db.reset(db);
   sqlite3_busy_timeout(db, 60000);
+  register_stationarity_function(db);
 
   std::string where;
   std::vector<double> numbers;

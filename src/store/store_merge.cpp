@@ -10,6 +10,7 @@
 #include "config/collapse_options.hpp"
 #include "config/run_key.hpp"
 #include "store/sqlite_statement.hpp"
+#include "store/stationarity_verdicts.hpp"
 
 namespace granchain {
 
@@ -388,6 +389,7 @@ MergeReport merge_into(const std::string& target, const std::vector<std::string>
     drop_spent_launches(db);
     exec(db, kVersion1RunsToVersion2);  // rows merged from a version-1 source
     exec(db, kRunsVerdictsFromJson);    // rows merged from a source older than version 3
+    exec(db, kRejudgeStoredRuns);       // rows judged under an earlier rule
     exec(db, "COMMIT");
   } catch (...) {
     sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
