@@ -280,6 +280,15 @@ TEST_F(ReproduceCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
   EXPECT_NE(r.out.find("granchain sweep --N 150 --e 0.1,0.2,0.3,0.4 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 20 --e"), std::string::npos) << r.out;  // the paper's columns stay
   EXPECT_NE(r.out.find("2424 distinct points"), std::string::npos) << r.out;
+  // N = 1000 settles after a longer transient than T/10 (its two sweeps), every other column not.
+  std::size_t longer = 0;
+  for (std::size_t at = r.out.find("--transient"); at != std::string::npos; at = r.out.find("--transient", at + 1)) {
+    ++longer;
+    const std::size_t line = r.out.rfind("granchain sweep", at);
+    EXPECT_EQ(r.out.compare(line, 26, "granchain sweep --N 1000 -"), 0) << r.out.substr(line, at - line);
+    EXPECT_EQ(r.out.compare(at, 16, "--transient 500 "), 0);
+  }
+  EXPECT_EQ(longer, 2u) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "l.db"));
   const CliResult bad = run("reproduce --figure fig6 --preset huge --db l.db");
   EXPECT_EQ(bad.exit_code, 2);

@@ -48,6 +48,7 @@ std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
     if (!b.engine.empty()) def.raw["engine"] = {b.engine, ""};
     if (!b.start_k.empty()) def.raw["start-k"] = {b.start_k, ""};
     def.raw["T"] = {b.T, ""};
+    if (!b.transient.empty()) def.raw["transient"] = {b.transient, ""};
     def.raw["T0"] = {b.T0, ""};
     if (b.drive != "thermal") {
       def.raw["drive"] = {b.drive, ""};
@@ -282,7 +283,9 @@ std::string sweep_command(const GridBlock& b) {
   if (!b.engine.empty()) line += " --engine " + b.engine;
   if (!b.k.empty()) line += " --k " + b.k;
   if (!b.start_k.empty()) line += " --start-k " + b.start_k;
-  line += fmt::format(" --T {} --T0 {}", b.T, b.T0);
+  line += fmt::format(" --T {}", b.T);
+  if (!b.transient.empty()) line += " --transient " + b.transient;
+  line += fmt::format(" --T0 {}", b.T0);
   if (b.drive != "thermal") line += fmt::format(" --drive {} --A {} --omega {}", b.drive, b.A, b.omega);
   if (b.replicas > 1) line += fmt::format(" --replicas {}", b.replicas);
   return line;

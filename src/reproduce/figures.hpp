@@ -80,6 +80,8 @@ struct GridBlock {
   std::string drive = "thermal", A = "", omega = "";
   // --engine ("": the default, exact) and, for the hard engine (k empty), --start-k ("": none).
   std::string engine = "", start_k = "";
+  // --transient ("": the default, T/10): longer where a column needs more than T/10 to settle.
+  std::string transient = "";
 };
 // "granchain sweep --N ... --T0 ..." with --drive/--A/--omega for a plate and --replicas when > 1.
 std::string sweep_command(const GridBlock& b);
