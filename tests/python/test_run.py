@@ -42,6 +42,9 @@ def test_run_is_bit_identical_to_the_cli(cli_json, engine, params):
     assert r["particle_collisions"] == j["observables"]["particle_collisions"]
     assert r["floor_hits"] == j["observables"]["floor_hits"]
     assert r["stationary"] == j["stationarity"]["stationary"]
+    for q in ("n_coll", "mean_height"):  # both distances of the halves check
+        for z in ("z", "z_settled"):
+            assert r["stationarity"][q][z] == j["stationarity"][q][z]
     assert r["z_mean"].tolist() == [p["z_mean"] for p in j["profiles"]]
     assert r["K_err"].tolist() == [p["K_err"] for p in j["profiles"]]
     assert r["parameters"]["k"] == (np.inf if engine == "hard" else params["k"])
