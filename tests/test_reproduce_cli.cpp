@@ -289,6 +289,12 @@ TEST_F(ReproduceCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
     EXPECT_EQ(r.out.compare(at, 16, "--transient 500 "), 0);
   }
   EXPECT_EQ(longer, 2u) << r.out;
+  // The contacts grid too: N = 1000's points after 500, the others after T/10.
+  const CliResult contacts = run("reproduce --figure contacts --preset large --print-sweeps --db l.db");
+  ASSERT_EQ(contacts.exit_code, 0) << contacts.err;
+  const std::size_t n1000 = contacts.out.find("granchain sweep --N 1000 ");
+  ASSERT_NE(n1000, std::string::npos) << contacts.out;
+  EXPECT_EQ(contacts.out.find("--transient"), contacts.out.find("--transient 500", n1000)) << contacts.out;
   EXPECT_FALSE(fs::exists(dir_ / "l.db"));
   const CliResult bad = run("reproduce --figure fig6 --preset huge --db l.db");
   EXPECT_EQ(bad.exit_code, 2);

@@ -23,9 +23,7 @@ const std::vector<int> kLargeN = {200, 300, 500, 1000};
 const char* kPowerLawE = "0.1,0.2,0.3,0.4";
 // Independent replicas where blocking may underestimate (condensed columns, docs/statistics.md).
 constexpr int kLargeReplicas = 4;
-// The transient of the large preset's columns: T/10 (the paper's) up to N = 500; N = 1000 falls
-// onto its floor for about 100 time units, so its windows start after 500 (docs/columns.md §1).
-std::string large_transient(int N) { return N >= 1000 ? "500" : ""; }
+
 
 std::vector<GridBlock> across_blocks(const ReproduceFlags& o, const std::vector<int>& Ns, const std::string& T0) {
   std::vector<GridBlock> blocks;
@@ -52,11 +50,11 @@ std::vector<GridBlock> large_blocks(const ReproduceFlags& o) {
   for (int N : replicated) {
     const bool large = N >= 200;
     GridBlock single_runs{std::to_string(N), e_list_at_n_one_minus_e(N, large ? uncondensed : wide), preset_k(o), preset_T(o, N), "1"};
-    single_runs.transient = large_transient(N);
+    single_runs.transient = settling_transient(N);
     blocks.push_back(single_runs);
     const std::string e = large ? e_list_at_n_one_minus_e(N, condensed) + "," + kPowerLawE : kPowerLawE;
     GridBlock replicas{std::to_string(N), e, preset_k(o), preset_T(o, N), "1", kLargeReplicas};
-    replicas.transient = large_transient(N);
+    replicas.transient = settling_transient(N);
     blocks.push_back(replicas);
   }
   return blocks;

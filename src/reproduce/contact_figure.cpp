@@ -77,6 +77,7 @@ std::vector<GridBlock> contacts_grid(const ReproduceFlags& o) {
     std::string es;
     for (const EChoice& c : kChoices) es += (es.empty() ? "" : ",") + e_of(c, N);
     GridBlock b{std::to_string(N), es, contact_k(o), contact_T(o), "1", kReplicas};
+    b.transient = settling_transient(N);
     blocks.push_back(b);
   }
   return blocks;

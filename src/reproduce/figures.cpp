@@ -37,6 +37,8 @@ std::string preset_T(const ReproduceFlags& o, int N) {
   return N < 50 ? "1000" : "100";
 }
 
+std::string settling_transient(int N) { return N >= 1000 ? "500" : ""; }
+
 std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks) {
   std::vector<SweepPoint> all;
   std::set<std::string> seen;

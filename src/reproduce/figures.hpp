@@ -99,6 +99,9 @@ std::string preset_k(const ReproduceFlags& o);
 double preset_k_min(const ReproduceFlags& o);
 std::string preset_k_max(const ReproduceFlags& o);  // the largest k, for profiles
 std::string preset_T(const ReproduceFlags& o, int N);
+// The transient of a column's grid block ("": the default, T/10): N = 1000 falls onto its floor
+// for about 100 time units from the initial state, so its windows start after 500 (docs/columns.md §1).
+std::string settling_transient(int N);
 
 // The points of all blocks, each key once, longest first. Throws InputError on a bad grid.
 std::vector<SweepPoint> grid_points(const std::vector<GridBlock>& blocks);
