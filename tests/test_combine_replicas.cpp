@@ -85,10 +85,11 @@ TEST(CombineReplicas, BurstyWindowsGiveAnUnbiasedMeanAndErrorsThatCover) {
   EXPECT_LT(inverse_variance_sum / points, mu - 20 * se);
 }
 
-// A window that had not settled: where a point has stationary runs after a longer transient, its
-// non-stationary runs after a shorter one are left out, named, with the reason. A non-stationary
-// run beside stationary runs of its own transient stays in its point (a settled column fails the
-// check now and then), marked; so does one whose point has no settled run at all.
+// Windows that had not settled: where a point has stationary runs after a longer transient, all its
+// runs after a shorter transient that some of them fail are left out, named with the reason (the
+// passing ones started from the same unsettled column). A shorter transient whose runs all pass
+// stays; so does a non-stationary run beside stationary runs of its own transient (a settled column
+// fails the check now and then), marked, and one whose point has no settled run at all.
 TEST(CombineReplicas, SettledRunsWithALongerTransientSupersedeUnsettledOnes) {
   std::vector<NcollRun> runs;
   std::int64_t id = 0;
@@ -99,9 +100,10 @@ TEST(CombineReplicas, SettledRunsWithALongerTransientSupersedeUnsettledOnes) {
     runs.push_back(r);
   };
   for (double k : kGrid) {
-    if (k == 1e5) {  // two unsettled windows (biased high) and four settled ones after 200
+    if (k == 1e5) {  // three windows after 20 (two flagged, all biased high), four settled ones after 200
       add(k, 130.0, false, 20);
       add(k, 126.0, false, 20);
+      add(k, 110.0, true, 20);
       for (double dx : {-1.5, -0.5, 0.5, 1.5}) add(k, 100.0 + dx, true, 200);
     } else if (k == 1e6) {  // a settled point whose third run fails the check by chance
       add(k, 110.0, true, 20);
@@ -109,21 +111,25 @@ TEST(CombineReplicas, SettledRunsWithALongerTransientSupersedeUnsettledOnes) {
       add(k, 113.0, false, 20);
     } else if (k == 1e7) {  // no settled run: the unsettled one is all there is
       add(k, 120.0, false, 20);
+    } else if (k == 1e8) {  // settled after 20 already: both transients' runs stay
+      add(k, 108.0, true, 20);
+      add(k, 108.2, true, 200);
     } else {
       add(k, 100.0 + std::log10(k), true, 20);
     }
   }
   const RegimeReport r = analyze_runs(runs, 1e6);
-  ASSERT_EQ(r.excluded.size(), 2u);
+  ASSERT_EQ(r.excluded.size(), 3u);
   for (const ExcludedRun& x : r.excluded) {
     EXPECT_EQ(x.k, 1e5);
-    EXPECT_NE(x.reason.find("had not settled"), std::string::npos) << x.reason;
-    EXPECT_NE(x.reason.find("after 200"), std::string::npos) << x.reason;
+    EXPECT_NE(x.reason.find("transient of 20 had not settled the point (2 of its 3 runs"), std::string::npos) << x.reason;
+    EXPECT_NE(x.reason.find("runs after 200 pass"), std::string::npos) << x.reason;
   }
   ASSERT_EQ(r.families.size(), 1u);
   const CurveAnalysis& c = r.families[0].curves[0];
   EXPECT_DOUBLE_EQ(c.n_coll_of_k[0].y, 100.0);                     // the settled runs alone
   EXPECT_DOUBLE_EQ(c.n_coll_of_k[1].y, (110.0 + 110.5 + 113.0) / 3);  // all three kept
   EXPECT_DOUBLE_EQ(c.n_coll_of_k[2].y, 120.0);
+  EXPECT_DOUBLE_EQ(c.n_coll_of_k[3].y, 108.1);
   EXPECT_EQ(c.non_stationary_k, (std::vector<double>{1e6, 1e7}));
 }

@@ -63,13 +63,20 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     const auto [it, fresh] = kept.emplace(r.trajectory, i);
     if (!fresh && r.T > runs[it->second].T) it->second = i;
   }
-  // Per point, the longest transient after which a usable run's window was stationary.
+  // Per point, the longest transient after which a usable run's window was stationary, and per
+  // (point, transient) how many usable runs there are and how many failed the check.
   using PointKey = std::tuple<EngineKind, DriveSpec, int, double, double, double>;
-  std::map<PointKey, std::pair<double, std::int64_t>> settled_after;  // transient, a run with it
+  const auto point_of = [](const NcollRun& r) { return PointKey{r.engine, r.drive, r.N, r.kT0, r.e, r.k}; };
+  std::map<PointKey, double> settled_after;
+  std::map<std::pair<PointKey, double>, std::pair<int, int>> verdicts;  // (runs, non-stationary)
   for (const NcollRun& r : runs) {
-    if (!r.stationary || !unusable(r).empty()) continue;
-    const auto [it, fresh] = settled_after.emplace(PointKey{r.engine, r.drive, r.N, r.kT0, r.e, r.k}, std::make_pair(r.transient, r.run_id));
-    if (!fresh && r.transient > it->second.first) it->second = {r.transient, r.run_id};
+    if (!unusable(r).empty()) continue;
+    auto& [n, failed] = verdicts[{point_of(r), r.transient}];
+    ++n;
+    failed += !r.stationary;
+    if (!r.stationary) continue;
+    const auto [it, fresh] = settled_after.emplace(point_of(r), r.transient);
+    if (!fresh) it->second = std::max(it->second, r.transient);
   }
   // Results identical to the last bit at one point: not two independent samples, whatever their
   // seeds say (zero scatter); the first is kept.
@@ -77,11 +84,14 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NcollRun& r = runs[i];
     std::string why = unusable(r);
-    if (why.empty() && !r.stationary) {
-      const auto s = settled_after.find(PointKey{r.engine, r.drive, r.N, r.kT0, r.e, r.k});
-      if (s != settled_after.end() && s->second.first > r.transient)
-        why = fmt::format("its window had not settled (not stationary after a transient of {:g}; run {} is, after {:g})", r.transient,
-                          s->second.second, s->second.first);
+    if (why.empty()) {
+      // A transient whose runs fail the check beside stationary runs after a longer one: all the
+      // runs after it are left out, those that passed too (they come from the same unsettled start).
+      const auto s = settled_after.find(point_of(r));
+      const auto [n, failed] = verdicts.at({point_of(r), r.transient});
+      if (s != settled_after.end() && s->second > r.transient && failed > 0)
+        why = fmt::format("its transient of {:g} had not settled the point ({} of its {} runs after it fail the stationarity "
+                          "check; runs after {:g} pass)", r.transient, failed, n, s->second);
     }
     if (why.empty() && !r.trajectory.empty() && kept.at(r.trajectory) != i)
       why = fmt::format("the same trajectory as run {} (the same parameters and seed{}); one trajectory is one sample",

@@ -48,10 +48,11 @@ struct NcollRun {
   std::string trajectory;
   double T = 0;  // the measuring window: of one trajectory, the longest run is kept
   DriveSpec drive;  // the thermal floor or a plate: each drive its own families
-  // The time discarded before the window. A non-stationary run is left out where its point has a
-  // stationary run after a longer transient (its window had not settled); any other non-stationary
-  // run stays in its point, marked (a settled column fails the check now and then, and dropping
-  // those runs would favour quiet windows).
+  // The time discarded before the window. Where a point has a stationary run after a longer
+  // transient, the runs after a shorter transient that some of them fail the check are left out,
+  // all of them (they started from the same unsettled column, the passing ones too); any other
+  // non-stationary run stays in its point, marked (a settled column fails the check now and then,
+  // and dropping those runs alone would favour quiet windows).
   double transient = 0;
 };
 
