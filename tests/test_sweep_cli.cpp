@@ -201,6 +201,43 @@ TEST_F(SweepCli, SweepFileEqualsFlagsAndBadInputIsRefused) {
   EXPECT_FALSE(fs::exists(dir_ / "a.db"));
 }
 
+// The replica check of `granchain analyze` compares the runs the analysis keeps: at k = 1e5, three
+// windows after a transient of 2 that two of them fail (scattered far beyond their errors) are
+// superseded by three settled ones after 50, and only those enter the check (3 runs, chi^2 small).
+TEST_F(SweepCli, AnalyzeChecksBlockingOnTheRunsItKeeps) {
+  {
+    granchain::ResultsStore store((dir_ / "r.db").string());
+    std::uint64_t seed = 0;
+    const auto add = [&](double k, double n, double transient, bool settled) {
+      granchain::RunResult r;
+      r.spec.params.N = 25;
+      r.spec.params.e = 0.3;
+      r.spec.params.k = k;
+      r.spec.T = 100;
+      r.spec.transient = transient;
+      r.spec.seed = ++seed;
+      r.n_coll.value = n;
+      r.n_coll.error = 0.1;
+      r.n_coll_blocking = {{64, 0.1, 0.0}, {32, 0.1, 0.0}, {16, 0.1, 0.0}};
+      if (!settled) r.n_coll_halves = granchain::judge_halves({n - 1.0, 0.1}, {n, 0.1});
+      store.insert_run(r);
+    };
+    for (double n : {14.0, 20.0}) add(1e5, n, 2, false);
+    add(1e5, 17.0, 2, true);
+    for (double n : {10.0, 10.1, 9.9}) add(1e5, n, 50, true);
+    for (double k : {1e6, 1e7, 1e8}) add(k, 10.0 + std::log10(k), 10, true);
+  }
+  const CliResult r = run("analyze --db r.db --k-min 1e5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["families"].size(), 1u);
+  const auto& checks = j["families"][0]["blocking_check"];
+  ASSERT_EQ(checks.size(), 1u) << checks.dump();
+  EXPECT_EQ(checks[0]["k"].get<double>(), 1e5);
+  EXPECT_EQ(checks[0]["runs"].get<int>(), 3);
+  EXPECT_NEAR(checks[0]["chi2_reported"].get<double>(), 2.0, 1e-9);  // (0.1^2 + 0.1^2) / 0.1^2
+}
+
 // `granchain analyze` on a store of runs whose n_coll(k) follow known laws: a power law
 // (e = 0.3), a logarithm (e = 0.86) and a converging curve (e = 0.95); it names each regime and
 // finds e_c2 between 0.3 and 0.86.

@@ -5,6 +5,7 @@
 // blocks within one run, or by neither (states that outlast the longest block).
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -16,8 +17,10 @@ namespace granchain {
 
 using FamilyKey = std::tuple<EngineKind, DriveSpec, int, double>;  // engine, drive, N, kT0
 
-// `rows` are the selected runs of `db`; points with two or more runs that keep a curve enter.
-std::map<FamilyKey, std::map<double, CurveScatter>> blocking_against_replicas(const std::string& db, const std::vector<StoredRun>& rows);
+// `rows` are the selected runs of `db`; points with two or more runs that keep a curve enter, less
+// the runs in `left_out` (those the analysis left out: unsettled windows, repeated trajectories).
+std::map<FamilyKey, std::map<double, CurveScatter>> blocking_against_replicas(const std::string& db, const std::vector<StoredRun>& rows,
+                                                                              const std::set<std::int64_t>& left_out);
 // "k = 1e6: 4 points, 12 runs, chi2/dof 1.31 with the reported errors; with 1024 .. 16 blocks: 4.2, ..., 1.05"
 std::string curve_scatter_text(double k, const CurveScatter& s);
 nlohmann::json curve_scatter_json(const std::map<double, CurveScatter>& by_k);

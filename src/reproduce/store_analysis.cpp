@@ -168,7 +168,6 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   a.k_min = k_min;
   std::vector<analysis::NcollRun> runs;
   const std::vector<StoredRun> rows = read_runs(db, sel);
-  a.blocking_checks = blocking_against_replicas(db, rows);
   for (const StoredRun& row : rows) {
     if (row.setup != "driven_column") continue;
     // The run's thread CPU time where stored (not stretched by a loaded machine), else its wall time.
@@ -195,6 +194,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   a.report = analysis::analyze_runs(runs, k_min);
   std::set<std::int64_t> left_out;
   for (const auto& x : a.report.excluded) left_out.insert(x.run_id);
+  a.blocking_checks = blocking_against_replicas(db, rows, left_out);
   a.condensation = condensation_by_family(db, sel, left_out);
   nlohmann::json& j = a.json;
   j = {{"k_min", k_min}, {"runs", a.runs}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
