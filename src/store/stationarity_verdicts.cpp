@@ -58,9 +58,10 @@ std::string current_stationary_sql(const std::string& alias) {
          ", '$.stationarity.stationary'))";
 }
 
+// Each run's JSON judged once (UPDATE ... FROM), the column written only where the verdict changed.
 const char* const kRejudgeStoredRuns =
-    "UPDATE runs SET stationary = granchain_stationary(json_extract(result_json, '$.stationarity')) "
-    "WHERE granchain_stationary(json_extract(result_json, '$.stationarity')) IS NOT NULL "
-    "AND stationary IS NOT granchain_stationary(json_extract(result_json, '$.stationarity'));";
+    "UPDATE runs SET stationary = judged.verdict FROM "
+    "(SELECT id, granchain_stationary(json_extract(result_json, '$.stationarity')) AS verdict FROM runs) AS judged "
+    "WHERE runs.id = judged.id AND judged.verdict IS NOT NULL AND runs.stationary IS NOT judged.verdict;";
 
 }  // namespace granchain
