@@ -45,7 +45,7 @@ def main(argv):
     ax.set_xlabel(r"$\log_{10} N$")
     ax.set_ylabel(r"$\alpha$")
     ax.set_title("(a) global fits", loc="left")
-    ax.legend(loc="upper left")
+    ax.legend(loc="best")  # wherever it covers the fewest points: the columns shown vary by preset
     # (b) local exponents per interval of k
     intervals = sorted({(l["k1"], l["k2"]) for f in data["families"] for l in f.get("local_alpha_bar", [])})
     cmap = SEQUENTIAL_2
@@ -61,7 +61,7 @@ def main(argv):
     bx.set_xlabel(r"$\log_{10} N$")
     bx.set_ylabel(r"local $\alpha$, mean over $e = 0.1, \ldots, 0.4$")
     bx.set_title(r"(b) local exponent per interval of $k$", loc="left")
-    bx.legend(loc="upper left")
+    bx.legend(loc="best")
     save(fig, argv[2])
     return 0
 
