@@ -137,6 +137,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         if (table1_e(e) && curve.c.power_fit.alpha_error > 0) {
           fam.alphas.push_back({e, curve.c.power_fit.alpha, curve.c.power_fit.alpha_error});
           table1_locals.push_back(local_exponents(curve.n_coll_of_k));
+          fam.local_alpha_by_e[e] = table1_locals.back();
         }
       }
       fam.curves.push_back(std::move(curve));
@@ -221,8 +222,21 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     for (auto& [k, pts] : local_of_n) {
       if (pts.size() < 3) continue;
       std::sort(pts.begin(), pts.end(), [](const DataPoint& a, const DataPoint& b) { return a.x < b.x; });
-      LocalAlphaLine line{k.first, k.second, {}, fit_alpha_vs_log10_n(pts)};
+      LocalAlphaLine line;
+      line.k1 = k.first;
+      line.k2 = k.second;
+      line.fit = fit_alpha_vs_log10_n(pts);
       for (const DataPoint& p : pts) line.Ns.push_back(static_cast<int>(p.x));
+      std::vector<ColumnExponents> columns;
+      for (const FamilyAnalysis* f : fams) {
+        ColumnExponents c{f->N, {}};
+        for (const auto& [e, locals] : f->local_alpha_by_e)
+          for (const LocalExponent& l : locals)
+            if (l.k1 == k.first && l.k2 == k.second && std::isfinite(l.alpha) && l.error > 0) c.by_e[e] = {0.0, l.alpha, l.error};
+        if (!c.by_e.empty()) columns.push_back(std::move(c));
+      }
+      line.neighbour_slopes = neighbour_slopes(columns);
+      line.has_excess = excess_over_line(columns, line.excess);
       a.local_alpha_lines.push_back(std::move(line));
     }
     report.across.push_back(a);

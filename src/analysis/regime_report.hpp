@@ -11,6 +11,7 @@
 #include "analysis/blocking.hpp"
 #include "engines/engine_registry.hpp"
 #include "model/plate_motion.hpp"
+#include "analysis/alpha_across_n.hpp"
 #include "analysis/collapse_regimes.hpp"
 #include "analysis/critical_restitution.hpp"
 
@@ -90,6 +91,7 @@ struct FamilyAnalysis {  // one (engine, drive, N, kT0)
   // The local exponent per interval of k, averaged over the same e as alpha_bar (all k, not only
   // the asymptotic range): how the slope behind alpha_bar drifts with k.
   std::vector<LocalExponent> local_alpha_bar;
+  std::map<double, std::vector<LocalExponent>> local_alpha_by_e;  // the same e, each curve's own
   // The blocking errors checked against independent replicas of one (e, k), where the store holds
   // two or more (analysis/blocking.hpp); the worst point's e and k.
   ReplicaScatter replicas;
@@ -103,6 +105,11 @@ struct LocalAlphaLine {
   double k1 = 0, k2 = 0;
   std::vector<int> Ns;  // ascending
   LineFit fit;
+  // At the same e on both sides (analysis/alpha_across_n.hpp): the slope between neighbouring
+  // columns, and the largest column against the line through the others.
+  std::vector<NeighbourSlope> neighbour_slopes;
+  bool has_excess = false;
+  LineExcess excess;
 };
 
 struct AcrossN {  // one (engine, drive, kT0), over N

@@ -39,7 +39,8 @@ Subcommand add_analyze_command(CLI::App& app) {
       "c k^alpha and classifies it (uncollapsing: b not > 2 errors; power-law: b > 0 and convex against\n"
       "log10 k; logarithmic: otherwise). Per (engine, N, T0): e_c1 (root of sqrt(b) against e), e_c2 (the\n"
       "convex/concave bracket), alpha bar (mean alpha at e = 0.1..0.4). Across N: (1 - e_c) = A/N and\n"
-      "alpha bar = p log10 N + q, and that line through each interval of k's local alpha. Criteria and\n"
+      "alpha bar = p log10 N + q, and that line through each interval of k's local alpha, with, at the same\n"
+      "e, the slopes between neighbouring N and the largest N's excess over the line through the others. Criteria and\n"
       "errors: docs/analysis.md. The filters choose the runs: --k 1e6:1e10:x10 fits one window of k at\n"
       "every N, --T one window length.\n" +
       exit_codes_help("2 bad input or no usable store (nothing written), 4 an output could not be written"));

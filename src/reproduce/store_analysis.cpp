@@ -270,14 +270,51 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                                                                                    {"intercept_err", a.alpha_fit.intercept_error}}
                                                                   : nlohmann::json(nullptr)}});
     nlohmann::json lines = nlohmann::json::array();
-    for (const analysis::LocalAlphaLine& l : a.local_alpha_lines)
+    for (const analysis::LocalAlphaLine& l : a.local_alpha_lines) {
       lines.push_back({{"k1", l.k1}, {"k2", l.k2}, {"N", l.Ns}, {"slope", l.fit.slope}, {"slope_err", l.fit.slope_error},
                        {"intercept", l.fit.intercept}, {"intercept_err", l.fit.intercept_error}, {"chi2", l.fit.chi2}, {"dof", l.fit.dof}});
+      nlohmann::json slopes = nlohmann::json::array();
+      for (const analysis::NeighbourSlope& n : l.neighbour_slopes)
+        slopes.push_back({{"N1", n.N1}, {"N2", n.N2}, {"slope", n.slope}, {"slope_err", n.error}, {"e_count", n.e_count}});
+      lines.back()["same_e_neighbour_slopes"] = std::move(slopes);
+      if (l.has_excess) {
+        nlohmann::json per_e = nlohmann::json::array();
+        for (const analysis::DataPoint& p : l.excess.per_e) per_e.push_back({{"e", p.x}, {"excess", p.y}, {"error", p.error}});
+        lines.back()["same_e_largest_N_excess"] = {{"N", l.excess.N},          {"others", l.excess.others}, {"excess", l.excess.excess},
+                                                   {"error", l.excess.error},  {"per_e", per_e}};
+      } else {
+        lines.back()["same_e_largest_N_excess"] = nullptr;
+      }
+    }
     j["across_N"].back()["local_alpha_vs_log10_N"] = std::move(lines);
     put_drive(j["across_N"].back(), a.drive);
   }
   return a;
 }
+
+namespace {
+
+// The slopes between neighbouring columns and the largest column's excess over the line through
+// the others, each at the same e on both sides (analysis/alpha_across_n.hpp).
+std::string same_e_text(const analysis::LocalAlphaLine& l) {
+  std::string out;
+  if (!l.neighbour_slopes.empty()) {
+    out += "    same e: d alpha / d log10 N between neighbours";
+    for (const analysis::NeighbourSlope& n : l.neighbour_slopes)
+      out += fmt::format(" {}→{} {}{}", n.N1, n.N2, plus_minus(n.slope, n.error), &n == &l.neighbour_slopes.back() ? "" : ",");
+    out += "\n";
+  }
+  if (l.has_excess) {
+    std::string per_e;
+    for (const analysis::DataPoint& p : l.excess.per_e)
+      per_e += fmt::format("{}e = {:g}: {:+.3f} ± {:.3f}", per_e.empty() ? "" : ", ", p.x, p.y, p.error);
+    out += fmt::format("    same e: N = {} minus the line through N = {}: {:+.3f} ± {:.3f} ({})\n", l.excess.N,
+                       fmt::join(l.excess.others, ", "), l.excess.excess, l.excess.error, per_e);
+  }
+  return out;
+}
+
+}  // namespace
 
 std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
   if (excluded.empty()) return "";
@@ -392,7 +429,8 @@ std::string analysis_text(const StoreAnalysis& a) {
     for (const analysis::LocalAlphaLine& l : a.local_alpha_lines)
       out += fmt::format("  local alpha {}–{} = ({}) log10 N + ({}), chi2/dof = {:.1f}/{} over N = {}\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2),
                          plus_minus(l.fit.slope, l.fit.slope_error), plus_minus(l.fit.intercept, l.fit.intercept_error), l.fit.chi2,
-                         l.fit.dof, fmt::join(l.Ns, ", "));
+                         l.fit.dof, fmt::join(l.Ns, ", "))
+             + same_e_text(l);
   }
   return out;
 }
