@@ -508,5 +508,15 @@ TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
     const std::vector<int> expected = x >= 8 ? std::vector<int>{25, 50, 100, 200, 300} : std::vector<int>{25, 50, 100, 200};
     EXPECT_EQ(l.Ns, expected) << l.k1;
     EXPECT_EQ(l.fit.dof, static_cast<int>(expected.size()) - 2) << l.k1;
+    // On one law in log N the same-e readings agree: every neighbour slope is the line's slope, and
+    // the largest column lies on the line through the others.
+    ASSERT_EQ(l.neighbour_slopes.size(), expected.size() - 1) << l.k1;
+    for (const NeighbourSlope& n : l.neighbour_slopes) {
+      EXPECT_NEAR(n.slope, 0.1 + 0.005 * s, 1e-9) << l.k1;
+      EXPECT_EQ(n.e_count, 4) << l.k1;
+    }
+    ASSERT_TRUE(l.has_excess) << l.k1;
+    EXPECT_EQ(l.excess.N, expected.back()) << l.k1;
+    EXPECT_NEAR(l.excess.excess, 0.0, 1e-9) << l.k1;
   }
 }
