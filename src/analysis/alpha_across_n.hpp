@@ -36,7 +36,7 @@ struct LineExcess {
 };
 // The largest column against, for each of its e, the weighted line through the other columns with
 // that e (at least two of them); the prediction's variance from the line's covariance, scaled by
-// chi^2/dof where that exceeds 1. found = false when no e has two other columns.
+// chi^2/dof where that exceeds 1. Returns false (out unusable) when no e has two other columns.
 bool excess_over_line(std::vector<ColumnExponents> columns, LineExcess& out);
 
 }  // namespace granchain::analysis

@@ -116,7 +116,6 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     std::vector<Curve> all_curves;
     std::vector<double> es;
     std::vector<Regime> regimes;
-    std::vector<std::vector<LocalExponent>> table1_locals;
     for (const auto& [e, by_k] : by_e) {
       CurveAnalysis curve;
       curve.e = e;
@@ -136,8 +135,7 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
         regimes.push_back(curve.c.regime);
         if (table1_e(e) && curve.c.power_fit.alpha_error > 0) {
           fam.alphas.push_back({e, curve.c.power_fit.alpha, curve.c.power_fit.alpha_error});
-          table1_locals.push_back(local_exponents(curve.n_coll_of_k));
-          fam.local_alpha_by_e[e] = table1_locals.back();
+          fam.local_alpha_by_e[e] = local_exponents(curve.n_coll_of_k);
         }
       }
       fam.curves.push_back(std::move(curve));
@@ -169,7 +167,9 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     if (!fam.alphas.empty()) {
       fam.alpha_bar = mean_exponent(fam.alphas);
       fam.has_alpha_bar = true;
-      fam.local_alpha_bar = mean_local_exponents(table1_locals);
+      std::vector<std::vector<LocalExponent>> per_e;
+      for (const auto& [e, locals] : fam.local_alpha_by_e) per_e.push_back(locals);
+      fam.local_alpha_bar = mean_local_exponents(per_e);
     }
     report.families.push_back(std::move(fam));
   }
