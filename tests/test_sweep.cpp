@@ -92,6 +92,32 @@ TEST(SweepGrid, ExpandsListsRangesAndReplicasLongestFirst) {
   EXPECT_EQ(points.front().spec.params.N, 5);  // more particles cost more
 }
 
+// Above k = 1e10 (the cost model's calibrated box) a collapsing column's events grow with its
+// collisions, like k^alpha: its predicted cost keeps growing with k, by the same factor each decade;
+// an uncollapsing column's (N (1 - e) = 1.2) falls a little, and only over the five decades its
+// runs were measured on. Nothing jumps at the box's edge.
+TEST(SweepGrid, CostAboveTheCalibratedKGrowsWithTheCollisionsOfACollapsingColumn) {
+  auto cost = [](double N, double e, double k) {
+    const auto points = build_sweep_points(definition({{"N", std::to_string(static_cast<int>(N))},
+                                                       {"e", std::to_string(e)}, {"k", std::to_string(k)}, {"T", "100"}}));
+    return points.at(0).cost;
+  };
+  for (const double N : {100.0, 300.0}) {  // N (1 - e) = 70 and 210: the collapsing side
+    const double at10 = cost(N, 0.3, 1e10), at11 = cost(N, 0.3, 1e11), at12 = cost(N, 0.3, 1e12), at20 = cost(N, 0.3, 1e20);
+    EXPECT_NEAR(cost(N, 0.3, 1e10 * (1 + 1e-9)), at10, 1e-6 * at10);
+    EXPECT_GT(at11 / at10, 1.5) << "N = " << N;  // the stored runs: 1.5 ... 2.0 per decade
+    EXPECT_LT(at11 / at10, 2.2) << "N = " << N;
+    EXPECT_NEAR(at12 / at11, at11 / at10, 1e-4);  // (up to the run's fixed overhead)
+    EXPECT_NEAR(std::log(at20 / at10), 10 * std::log(at11 / at10), 1e-3);
+  }
+  const double e_c = 1 - 1.2 / 100;  // uncollapsing: the stored runs fall 0.85 ... 0.97 per decade
+  const double c10 = cost(100, e_c, 1e10), c11 = cost(100, e_c, 1e11);
+  EXPECT_LT(c11, c10);
+  EXPECT_GT(c11 / c10, 0.8);
+  EXPECT_NEAR(cost(100, e_c, 1e15), cost(100, e_c, 1e25), 1e-9 * c10);
+  EXPECT_LT(cost(100, e_c, 1e15), cost(100, e_c, 1e14));
+}
+
 TEST(SweepGrid, HardEngineTakesNoKAndRepeatedValuesAreOnePoint) {
   const auto points = build_sweep_points(
       definition({{"N", "4,4"}, {"e", "0.9"}, {"k", "1e4,1e5"}, {"engine", "exact,hard"}, {"T", "10"}}));

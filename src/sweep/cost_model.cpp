@@ -26,6 +26,26 @@ const double kXMax = std::log1p(kCalibratedNMax * 0.9);  // the largest c of the
 // choices of e), so the cost grows like N^2.2 beyond the box.
 constexpr double kBeyondNPower = 2.2;
 constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysis of a short run
+// `/usr/bin/python3 bench/fit_high_k_cost.py data/paper/paper.db data/columns/columns.db
+// data/columns/long_windows.db` (2026-11-29): above k = 1e10 the rate of k = 1e10 grows by
+// exp(s(x)) per decade of k, s(x) = s0 + s1 x + s2 x^2, x = ln(1 + N (1 - e)) clamped to
+// [ln 2.2, ln 36], fitted on 993 runs of 151 columns (N = 10 ... 500, k = 1e10 ... 1e30) with one
+// free offset per column. A collapsing column's collisions grow like k^alpha: s = 0.61 at
+// N (1 - e) >= 35 (the columns of N = 50 ... 300 there: 0.42 ... 0.68 each); an uncollapsing one's
+// cost falls slightly (s = -0.17 at N (1 - e) = 1.2), a fall measured only up to k = 1e15 and not
+// extrapolated beyond it.
+constexpr double kAboveKCoefficients[3] = {-0.374, 0.255, 0.005};
+const double kAboveKXMin = std::log1p(1.2), kAboveKXMax = std::log1p(35.0);
+constexpr double kDecadesOfFallMeasured = 5;
+
+// ln of what the rate gains from k = 1e10 to k (0 at k <= 1e10).
+double log_growth_above_box_k(double N, double e, double k) {
+  const double decades = std::log10(k) - (5.0 + kDecadesAbove1e5);
+  if (decades <= 0.0) return 0.0;
+  const double x = std::clamp(std::log1p(N * (1.0 - e)), kAboveKXMin, kAboveKXMax);
+  const double s = kAboveKCoefficients[0] + kAboveKCoefficients[1] * x + kAboveKCoefficients[2] * x * x;
+  return s * (s < 0.0 ? std::min(decades, kDecadesOfFallMeasured) : decades);
+}
 
 // The features of bench/fit_cost_model.py, same order.
 double exact_log_rate(double N, double e, double k, double T0) {
@@ -39,7 +59,7 @@ double exact_log_rate(double N, double e, double k, double T0) {
   for (int j = 0; j < 13; ++j) s += kExactCoefficients[j] * f[j];
   // Above the box: the rate of N = 150 at the column's own c, times (N / 150)^kBeyondNPower; below
   // it (N = 2), the rate of N = 3 times 2/3.
-  return s + (N > n ? kBeyondNPower : 1.0) * std::log(N / n);
+  return s + (N > n ? kBeyondNPower : 1.0) * std::log(N / n) + log_growth_above_box_k(N, e, k);
 }
 
 // `/usr/bin/python3 bench/fit_plate_cost.py data/drives/paper.db data/drives/quick.db` (2026-11-27):
