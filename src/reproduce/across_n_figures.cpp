@@ -257,15 +257,29 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log
   out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
   // The same line through the local exponents of each interval of k: how Eq. alphafit's slope
   // depends on where in k the exponent is read.
+  // At the same e on both sides (analysis/alpha_across_n.hpp): the slope between the two largest
+  // columns and the largest one's excess over the line through the others, which tell a crossover
+  // or a bend at large N from the scatter of the means over e.
   std::string locals;
   if (x)
-    for (const analysis::LocalAlphaLine& l : x->local_alpha_lines)
-      locals += fmt::format("| {}–{} | {} | {} | {} | {:.1f} / {} |\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2), l.Ns.size(),
-                            plus_minus(l.fit.slope, l.fit.slope_error), plus_minus(l.fit.intercept, l.fit.intercept_error), l.fit.chi2,
-                            l.fit.dof);
+    for (const analysis::LocalAlphaLine& l : x->local_alpha_lines) {
+      const std::string top = l.neighbour_slopes.empty()
+                                  ? "-"
+                                  : fmt::format("{}→{}: {}", l.neighbour_slopes.back().N1, l.neighbour_slopes.back().N2,
+                                                plus_minus(l.neighbour_slopes.back().slope, l.neighbour_slopes.back().error));
+      const std::string excess =
+          l.has_excess ? fmt::format("N = {}: {:+.3f} ± {:.3f}", l.excess.N, l.excess.excess, l.excess.error) : "-";
+      locals += fmt::format("| {}–{} | {} | {} | {} | {:.1f} / {} | {} | {} |\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2),
+                            l.Ns.size(), plus_minus(l.fit.slope, l.fit.slope_error), plus_minus(l.fit.intercept, l.fit.intercept_error),
+                            l.fit.chi2, l.fit.dof, top, excess);
+    }
   if (!locals.empty())
     out.markdown += "\nThe line α = p log10 N + q through the local exponents of each interval of k (mean over e = 0.1 … 0.4), "
-                    "the paper's p = 0.18, q = −0.054:\n\n| k | N | p | q | χ² / dof |\n|---|---|---|---|---|\n" + locals;
+                    "the paper's p = 0.18, q = −0.054; at the same e on both sides, the slope dα/dlog10 N between the two "
+                    "largest columns and the largest column minus the line through the others (`granchain analyze` prints "
+                    "every pair and each e):\n\n| k | N | p | q | χ² / dof | slope between the largest two (same e) "
+                    "| largest N minus the line (same e) |\n|---|---|---|---|---|---|---|\n" +
+                    locals;
   out.markdown += excluded_markdown(s.a);
   return out;
 }
