@@ -21,7 +21,7 @@ out again (S_NOW below, keep in step with kAboveKCoefficients), and the least-sq
 u_column one free offset per column (N, e, k_B T0): the box's own error at that column, which the
 term above k = 1e10 should not absorb. Columns with a single k carry no slope and are left out of
 the fit. Prints the coefficients, then measured / predicted per class of N (1 - e) and decade of k
-with the binary's model (geometric mean and the share within a factor of 2).
+with the binary's model and with k held at 1e10 (geometric mean and the share within a factor of 2).
 """
 import argparse
 import collections
@@ -122,19 +122,29 @@ def main(argv):
     print("  s at N (1 - e) = " + ", ".join("%g: %.3f" % (c, slope(s, clamp_x(c + 1, 1.0 / (c + 1))))
                                              for c in (1.2, 2.6, 5, 10, 35, 135, 300)))
 
-    print("\nmeasured / predicted with the binary's model (geometric mean, within 2x), by N (1 - e) and k:")
-    print("%-14s %8s %6s %10s %10s" % ("N (1 - e)", "k", "runs", "geo mean", "within 2x"))
+    print("\nmeasured / predicted (geometric mean, share within 2x) by N (1 - e) and k, with the binary's model and with")
+    print("k held at 1e10 (the term above divided out):")
+    print("%-14s %8s %6s %10s %10s %12s %10s" % ("N (1 - e)", "k", "runs", "geo mean", "within 2x", "held: geo", "within 2x"))
     cells = collections.defaultdict(list)
-    for N, e, T0, lk, y, _y0 in data:
+    for N, e, T0, lk, y, y0 in data:
         c = N * (1.0 - e)
         cls = next(i for i, (lo, hi) in enumerate(CLASSES) if lo <= c < hi)
-        cells[(cls, round(lk))].append(y)
-    for (cls, lk), ys in sorted(cells.items()):
+        cells[(cls, round(lk))].append((y, y0))
+    within = lambda v: 100.0 * np.mean(np.abs(v) < math.log(2.0))
+    for (cls, lk), pairs in sorted(cells.items()):
         lo, hi = CLASSES[cls]
         label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
-        ys = np.array(ys)
-        print("%-14s %8s %6d %10.2f %9.0f %%" % (label, "1e%d" % (10 + lk), len(ys), math.exp(ys.mean()),
-                                                 100.0 * np.mean(np.abs(ys) < math.log(2.0))))
+        ys, y0s = np.array(pairs).T
+        print("%-14s %8s %6d %10.2f %9.0f %% %12.2f %9.0f %%" % (label, "1e%d" % (10 + lk), len(ys), math.exp(ys.mean()), within(ys),
+                                                            math.exp(y0s.mean()), within(y0s)))
+    print("\nper N (1 - e), all k above 1e10:")
+    for cls, (lo, hi) in enumerate(CLASSES):
+        label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
+        pairs = [p for (c, lk), v in cells.items() if c == cls and lk > 0 for p in v]
+        if pairs:
+            ys, y0s = np.array(pairs).T
+            print("%-14s %8s %6d %10.2f %9.0f %% %12.2f %9.0f %%" % (label, "> 1e10", len(ys), math.exp(ys.mean()), within(ys),
+                                                                math.exp(y0s.mean()), within(y0s)))
     ys = np.array([d[4] for d in data if d[3] > 0.5])
     ys0 = np.array([d[5] for d in data if d[3] > 0.5])
     print("above k = 1e10: %d runs, within 2x %.0f %% (with k held at 1e10: %.0f %%), geometric mean %.2f (%.2f)"
