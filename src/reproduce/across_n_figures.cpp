@@ -256,17 +256,18 @@ FigureOutcome reproduce_alpha_vs_n(const ReproduceFlags& o, ReproductionLog& log
                              reproduce_command_line(o), power_of_ten_text(preset_k_min(o)));
   out.markdown += table + fmt::format("\nMeasured: {}. The paper (Eq. alphafit): α = 0.18 log10 N − 0.054.\n", fit);
   // The same line through the local exponents of each interval of k: how Eq. alphafit's slope
-  // depends on where in k the exponent is read.
-  // At the same e on both sides (analysis/alpha_across_n.hpp): the slope between the two largest
-  // columns and the largest one's excess over the line through the others, which tell a crossover
-  // or a bend at large N from the scatter of the means over e.
+  // depends on where in k the exponent is read; and, at the same e on both sides
+  // (analysis/alpha_across_n.hpp), the slope between the two largest columns and the largest one's
+  // excess over the line through the others, which tell a crossover or a bend at large N from the
+  // scatter of the means over e.
   std::string locals;
   if (x)
     for (const analysis::LocalAlphaLine& l : x->local_alpha_lines) {
-      const std::string top = l.neighbour_slopes.empty()
-                                  ? "-"
-                                  : fmt::format("{}→{}: {}", l.neighbour_slopes.back().N1, l.neighbour_slopes.back().N2,
-                                                plus_minus(l.neighbour_slopes.back().slope, l.neighbour_slopes.back().error));
+      std::string top = "-";
+      if (!l.neighbour_slopes.empty()) {
+        const analysis::NeighbourSlope& n = l.neighbour_slopes.back();
+        top = fmt::format("{}→{}: {}", n.N1, n.N2, plus_minus(n.slope, n.error));
+      }
       const std::string excess =
           l.has_excess ? fmt::format("N = {}: {:+.3f} ± {:.3f}", l.excess.N, l.excess.excess, l.excess.error) : "-";
       locals += fmt::format("| {}–{} | {} | {} | {} | {:.1f} / {} | {} | {} |\n", power_of_ten_text(l.k1), power_of_ten_text(l.k2),

@@ -19,7 +19,8 @@ namespace granchain {
 //    (N (1 - e) >= 35: the collisions of a collapsing column grow like k^alpha), fitted by
 //    bench/fit_high_k_cost.py on the stored runs up to k = 1e30 (85 % of 834 within a factor of 2,
 //    71 % with k held at 1e10). Above a vibrating plate: times a factor of the drive, k, N and
-//    N (1 - e) fitted by bench/fit_plate_cost.py (about 0.5-1.4 at k = 1e5, 1-5 at 1e8 and 1.3-17 at 1e10 for N = 25).
+//    N (1 - e) fitted by bench/fit_plate_cost.py (about 0.5-1.4 at k = 1e5, 1-5 at 1e8 and 1.3-17
+//    at 1e10 for N = 25).
 //  - reference engines: (5e-9 N + 4e-8) s per step of the whole column, dt = tau_c / dt-factor
 //    (measured: 4.8e-9 .. 2.2e-8 s per particle step from N = 50 down to N = 3).
 //  - hard-sphere engine: not calibrated; about 3e-7 s per collision with a guessed collision
