@@ -131,25 +131,25 @@ def main(argv):
         cls = next(i for i, (lo, hi) in enumerate(CLASSES) if lo <= c < hi)
         cells[(cls, round(lk))].append((y, y0))
     within = lambda v: 100.0 * np.mean(np.abs(v) < math.log(2.0))
-    for (cls, lk), pairs in sorted(cells.items()):
+
+    def print_row(cls, k_text, pairs):
         lo, hi = CLASSES[cls]
         label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
         ys, y0s = np.array(pairs).T
-        print("%-14s %8s %6d %10.2f %9.0f %% %12.2f %9.0f %%" % (label, "1e%d" % (10 + lk), len(ys), math.exp(ys.mean()), within(ys),
+        print("%-14s %8s %6d %10.2f %9.0f %% %12.2f %9.0f %%" % (label, k_text, len(ys), math.exp(ys.mean()), within(ys),
                                                             math.exp(y0s.mean()), within(y0s)))
+
+    for (cls, lk), pairs in sorted(cells.items()):
+        print_row(cls, "1e%d" % (10 + lk), pairs)
     print("\nper N (1 - e), all k above 1e10:")
-    for cls, (lo, hi) in enumerate(CLASSES):
-        label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
+    for cls in range(len(CLASSES)):
         pairs = [p for (c, lk), v in cells.items() if c == cls and lk > 0 for p in v]
         if pairs:
-            ys, y0s = np.array(pairs).T
-            print("%-14s %8s %6d %10.2f %9.0f %% %12.2f %9.0f %%" % (label, "> 1e10", len(ys), math.exp(ys.mean()), within(ys),
-                                                                math.exp(y0s.mean()), within(y0s)))
+            print_row(cls, "> 1e10", pairs)
     ys = np.array([d[4] for d in data if d[3] > 0.5])
     ys0 = np.array([d[5] for d in data if d[3] > 0.5])
     print("above k = 1e10: %d runs, within 2x %.0f %% (with k held at 1e10: %.0f %%), geometric mean %.2f (%.2f)"
-          % (len(ys), 100.0 * np.mean(np.abs(ys) < math.log(2.0)), 100.0 * np.mean(np.abs(ys0) < math.log(2.0)),
-             math.exp(ys.mean()), math.exp(ys0.mean())))
+          % (len(ys), within(ys), within(ys0), math.exp(ys.mean()), math.exp(ys0.mean())))
     return 0
 
 
