@@ -1,23 +1,25 @@
 #!/usr/bin/python3
-"""Calibrates the exact engine's cost model (src/sweep/cost_model.cpp) on points timed by
-bench/paper_cost.sh --list FILE.
+"""Calibrates the exact engine's cost model (src/sweep/cost_model.cpp) on timed runs.
 
 The model: ln(seconds per unit of simulated time) = sum_j c_j f_j(N, e, k, T0), with the features
-of cost_model.cpp (FEATURES below, in the same order), fitted by weighted least squares. Points
-whose long run took under 0.05 s weigh 0.05: their timing is mostly the run's fixed overhead.
-Each point's measured rate is the settled one, (long - short) / (LONG - SHORT), or the mean over the
-long run where that is larger (the difference of two short timings is noise for cheap points).
+of cost_model.cpp (features() below, in the same order), fitted by weighted least squares. N is held
+in the box 3 <= N <= 150 and log10 k in 5 ... 10; beyond N = 150 the feature ln(N / 150) carries the
+power of N the cost grows with (fitted here with the rest). x = ln(1 + N (1 - e)) is the column's
+own, held at N (1 - e) <= 135.
 
     /usr/bin/python3 bench/fit_cost_model.py [sample.txt ...] [--short 10 --long 40 --settle 40]
                                              [--runs runs.txt ...] [--seeds odd|even|all]
 
---runs (repeatable) adds whole runs from a results store (bench/cost_model_check.sh --list): their
-time (CPU time where stored) over T + transient is the rate, free of the start-up effects that make
-the sample's millisecond timings unreliable; --seeds keeps only those with odd or even seeds, so
-that the others can check the model.
+--runs (repeatable) adds whole runs, one per line: N e k T0 T transient predicted measured seed (as
+bench/cost_model_check.sh --list writes them, or a query of a results store, docs/benchmarks.md):
+their time (CPU time where stored) over T + transient is the rate, free of the start-up effects that
+make a sample's millisecond timings unreliable; --seeds keeps only those with odd or even seeds, so
+that the others can check the model. The positional sample files (bench/paper_cost.sh --list) give
+each point's settled rate, (long - short) / (LONG - SHORT), or the mean over the long run where that
+is larger; points whose long run took under 0.05 s weigh 0.05 (mostly the run's fixed overhead).
 
-prints the coefficients as a C++ initialiser and how many points the model predicts within a
-factor of 2.
+prints the coefficients as a C++ initialiser and how many points the model predicts within a factor
+of 2, for the runs fitted and, with --seeds odd or even, for the others.
 """
 import argparse
 import math
@@ -26,11 +28,14 @@ import numpy as np
 
 
 def features(N, e, k, T0):
-    """The model's features; keep in step with exact_features() in src/sweep/cost_model.cpp."""
-    lN = math.log(min(max(N, 3.0), 150.0))
-    x = math.log1p(min(max(N, 3.0), 150.0) * (1.0 - e))
+    """The model's features; keep in step with exact_log_rate() in src/sweep/cost_model.cpp."""
+    n = min(max(N, 3.0), 150.0)
+    lN = math.log(n)
+    x = min(math.log1p(N * (1.0 - e)), math.log1p(135.0))
     lk = min(max(math.log10(k) - 5.0, 0.0), 5.0)
-    return [1.0, lN, lN * lN, x, x * x, x ** 3, lk, lk * x, lk * x * x, lk * lN, x * lN, lk * lk, math.log(T0)]
+    beyond = math.log(N / 150.0) if N > 150.0 else 0.0
+    return [1.0, lN, lN * lN, x, x * x, x ** 3, lk, lk * x, lk * x * x, lk * lN, x * lN, lk * lk, math.log(T0),
+            beyond, lk * lk * x, lk * x * lN]
 
 
 def main():
@@ -43,6 +48,9 @@ def main():
     ap.add_argument("--seeds", default="all", choices=["odd", "even", "all"])
     a = ap.parse_args()
     rows, rates, weights = [], [], []
+    held_rows, held_rates = [], []  # the runs of the other seeds: the check
+    cells = []  # (N, N (1 - e)) of every whole run, fitted ones first, then the held-out ones
+    held_cells = []
     for path in a.lists:
         for line in open(path):
             f = line.split()
@@ -59,10 +67,14 @@ def main():
             N, e, k, T0, T, tr, wall, seed = (float(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]),
                                               float(f[5]), float(f[7]), f[8])
             if a.seeds != "all" and (int(seed[-1]) % 2 == 1) != (a.seeds == "odd"):
+                held_rows.append(features(N, e, k, T0))
+                held_rates.append(wall / (T + tr))
+                held_cells.append((N, N * (1.0 - e)))
                 continue
             rows.append(features(N, e, k, T0))
             rates.append(wall / (T + tr))
             weights.append(1.0)
+            cells.append((N, N * (1.0 - e)))
     X, y, w = np.array(rows), np.log(np.array(rates)), np.array(weights)
     coef, *_ = np.linalg.lstsq(X * w[:, None], y * w, rcond=None)
     ratio = np.exp(X @ coef - y)
@@ -72,7 +84,32 @@ def main():
     print("// predicted / measured within a factor of 2: %d of %d (all), %d of %d (timed above 0.05 s);"
           % (within.sum(), len(y), within[timed].sum(), timed.sum()))
     print("// range over those: %.2f .. %.2f" % (ratio[timed].min(), ratio[timed].max()))
+    if held_rows:
+        held = np.exp(np.array(held_rows) @ coef) / np.array(held_rates)
+        print("// held out (the other seeds): %d of %d within a factor of 2, range %.2f .. %.2f"
+              % (((held > 0.5) & (held < 2.0)).sum(), len(held), held.min(), held.max()))
+    whole = np.log(ratio[len(y) - len(cells):])
+    if held_rows:
+        whole = np.concatenate([whole, np.log(held)])
+    print_cells(cells + held_cells, whole)
     print("constexpr double kExactCoefficients[%d] = {%s};" % (len(coef), ", ".join("%.6g" % c for c in coef)))
+
+
+def print_cells(cells, log_ratios):
+    """measured / predicted of the whole runs (fitted and held out) per N and class of N (1 - e)."""
+    classes = ((0.0, 3.0), (3.0, 6.0), (6.0, 30.0), (30.0, 1e9))
+    groups = {}
+    for (N, c), r in zip(cells, log_ratios):
+        n_label = "%d" % N if N >= 100 else ("3 - 6" if N <= 6 else "10 - 50")
+        cls = next(i for i, (lo, hi) in enumerate(classes) if lo <= c < hi)
+        groups.setdefault((N if N >= 100 else (1 if N <= 6 else 2), cls, n_label), []).append(-r)
+    print("// whole runs, measured / predicted per N and N (1 - e): runs, geometric mean, within a factor of 2")
+    for (_, cls, n_label), v in sorted(groups.items()):
+        v = np.array(v)
+        lo, hi = classes[cls]
+        c_label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
+        print("//   N %-8s N (1 - e) %-7s %5d %6.2f %5.0f %%" % (n_label, c_label, len(v), math.exp(v.mean()),
+                                                             100.0 * np.mean(np.abs(v) < math.log(2.0))))
 
 
 if __name__ == "__main__":

@@ -13,9 +13,10 @@ Then for every run of the grid in STORE: the model's prediction (`granchain swee
 binary given, matched by seed) against the run's CPU time, and the least-squares fit of
     ln(measured / predicted) = c + p ln(N / 150)
 per choice of e and over all runs, with the residuals' rms and the within-2x count before and after
-it. The model takes the rate of N = 150 at the column's own N(1 - e) and scales it by
-(N / 150)^kBeyondNPower: p is the power of N it misses (fitted at kBeyondNPower = 1, p = 1.21 gave
-kBeyondNPower = 2.2; with today's model p is the residual, about 0).
+it. The model takes the rate of N = 150 at the column's own N(1 - e) and scales it by (N / 150)^P:
+p is the power of N it misses (at P = 1, p = 1.21 on this grid; today's P, 2.49, is fitted with the
+rest of the model by bench/fit_cost_model.py on these runs and the longer ones of N = 200 ... 1000,
+and p is this grid's residual, -0.28).
 """
 import argparse
 import math

@@ -9,6 +9,10 @@ set -euo pipefail
 # shellcheck source=tests/scripts/fake_slurm.sh
 source "$(dirname "$0")/fake_slurm.sh"
 script="$repo/scripts/slurm-reproduce-array.sh"
+# The job's walltime less half an hour, as the script states it (WALLTIME_S) and as #SBATCH --time.
+walltime=$(( $(sed -n 's/^WALLTIME_S=\$((\(.*\)))$/\1/p' "$script") ))
+sbatch_days=$(sed -n 's/^#SBATCH --time=\([0-9]*\)-00:00:00$/\1/p' "$script")
+[ "$walltime" -eq $(( sbatch_days * 86400 - 1800 )) ] || fail "WALLTIME_S = $walltime s is not #SBATCH --time ($sbatch_days days) less half an hour"
 cat > bin/granchain <<'STUB'
 #!/usr/bin/env bash
 if [ "$1" = reproduce ]; then
@@ -47,14 +51,14 @@ head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 
   fail "first sweep: $(head -1 sweeps.args)"
 tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64" || fail "second sweep: $(tail -1 sweeps.args)"
 limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
-[ "$limit" -gt 170000 ] && [ "$limit" -le 171000 ] || fail "time limit $limit s, not the two days' walltime less half an hour"
+[ "$limit" -gt $(( walltime - 1000 )) ] && [ "$limit" -le "$walltime" ] || fail "time limit $limit s, not the job's walltime less half an hour ($walltime s)"
 # A share whose longest point cannot fit in the whole walltime is refused, and nothing of it runs.
 rm -f sweeps.args
 rc=0
-SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 GRANCHAIN="$work/bin/granchain" FAKE_COST=140000 bash "$script" 2> err.txt || rc=$?
+SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 GRANCHAIN="$work/bin/granchain" FAKE_COST=$(( walltime * 4 / 5 )) bash "$script" 2> err.txt || rc=$?
 [ "$rc" -eq 2 ] || fail "a share longer than the walltime exited $rc, not 2"
 [ ! -e sweeps.args ] || fail "a share longer than the walltime ran: $(cat sweeps.args)"
-grep -q "its longest point needs 175001 s, more than the job's 171000 s" err.txt || fail "refusal: $(cat err.txt)"
+grep -q "its longest point needs $(( walltime + 1 )) s, more than the job's $walltime s" err.txt || fail "refusal: $(cat err.txt)"
 # A sweep that left points: the next one still runs, and the task asks to be resubmitted.
 [ "$(task "75 0")" -eq 75 ] || fail "a sweep that left points did not make the task exit 75"
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the sweep after one that left points did not run"
@@ -82,10 +86,10 @@ grep '^granchain sweep ' print.txt > large.txt
 : > keys.txt
 while read -r line; do
   read -ra words <<< "${line#granchain }"
-  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit 171000s --dry-run > /dev/null ||
+  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit "${walltime}s" --dry-run > /dev/null ||
     fail "refused: $line"
   "$binary" "${words[@]}" --db "$work/none.db" --dry-run > dry.txt
-  awk '/driven_column/ { v = $2 + 0; if (1.25 * v > 171000) bad = 1 } END { exit bad }' dry.txt || fail "a point of '$line' exceeds the walltime"
+  awk -v w="$walltime" '/driven_column/ { v = $2 + 0; if (1.25 * v > w) bad = 1 } END { exit bad }' dry.txt || fail "a point of '$line' exceeds the walltime"
   awk '/driven_column/ { print $4 }' dry.txt >> keys.txt
 done < large.txt
 distinct=$(grep -o '^# [0-9]* distinct points' print.txt | awk '{ print $2 }')
