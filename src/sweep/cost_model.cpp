@@ -29,8 +29,8 @@ constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysi
 // data/columns/long_windows.db` (2026-11-29): above k = 1e10 the rate of k = 1e10 grows by
 // exp(s(x)) per decade of k, s(x) = s0 + s1 x + s2 x^2, x = ln(1 + N (1 - e)) clamped to
 // [ln 2.2, ln 36], fitted on 993 runs of 151 columns (N = 10 ... 500, k = 1e10 ... 1e30) with one
-// free offset per column (on 1016 runs of 153 columns and the box of kExactCoefficients the fit
-// gives -0.372, 0.251, 0.006). A collapsing column's collisions grow like k^alpha: s = 0.61 at
+// free offset per column (on 1021 runs of 153 columns and the box of kExactCoefficients the fit
+// gives -0.371, 0.250, 0.007). A collapsing column's collisions grow like k^alpha: s = 0.61 at
 // N (1 - e) >= 35 (the columns of N = 50 ... 300 there: 0.42 ... 0.68 each); an uncollapsing one's
 // cost falls slightly (s = -0.17 at N (1 - e) = 1.2), a fall measured only up to k = 1e15 and not
 // extrapolated beyond it.
