@@ -26,6 +26,8 @@ import math
 
 import numpy as np
 
+from fit_high_k_cost import class_label, class_of  # the tables' classes of N (1 - e)
+
 
 def features(N, e, k, T0):
     """The model's features; keep in step with exact_log_rate() in src/sweep/cost_model.cpp."""
@@ -97,20 +99,15 @@ def main():
 
 def print_cells(cells, log_ratios):
     """measured / predicted of the whole runs (fitted and held out) per N and class of N (1 - e)."""
-    classes = ((0.0, 3.0), (3.0, 6.0), (6.0, 30.0), (30.0, 1e9))
     groups = {}
     for (N, c), r in zip(cells, log_ratios):
-        n_label = "%d" % N if N >= 100 else ("3 - 6" if N <= 6 else "10 - 50")
-        cls = next(i for i, (lo, hi) in enumerate(classes) if lo <= c < hi)
-        groups.setdefault((N if N >= 100 else (1 if N <= 6 else 2), cls, n_label), []).append(-r)
+        n_group = (N, "%d" % N) if N >= 100 else ((1, "3 - 6") if N <= 6 else (2, "10 - 50"))
+        groups.setdefault((n_group, class_of(c)), []).append(-r)
     print("// whole runs, measured / predicted per N and N (1 - e): runs, geometric mean, within a factor of 2")
-    for (_, cls, n_label), v in sorted(groups.items()):
+    for ((_, n_label), cls), v in sorted(groups.items()):
         v = np.array(v)
-        lo, hi = classes[cls]
-        c_label = "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
-        print("//   N %-8s N (1 - e) %-7s %5d %6.2f %5.0f %%" % (n_label, c_label, len(v), math.exp(v.mean()),
+        print("//   N %-8s N (1 - e) %-7s %5d %6.2f %5.0f %%" % (n_label, class_label(cls), len(v), math.exp(v.mean()),
                                                              100.0 * np.mean(np.abs(v) < math.log(2.0))))
-
 
 if __name__ == "__main__":
     main()

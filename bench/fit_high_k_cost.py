@@ -35,7 +35,17 @@ import numpy as np
 S_NOW = (-0.374, 0.255, 0.005)  # kAboveKCoefficients in src/sweep/cost_model.cpp
 X_MIN, X_MAX = math.log1p(1.2), math.log1p(35.0)
 FALL_DECADES = 5  # kDecadesOfFallMeasured: the uncollapsing columns' runs reach k = 1e15
-CLASSES = ((0.0, 3.0), (3.0, 6.0), (6.0, 30.0), (30.0, 1e9))
+CLASSES = ((0.0, 3.0), (3.0, 6.0), (6.0, 30.0), (30.0, 1e9))  # of N (1 - e), for the tables
+
+
+def class_of(c):
+    """The index in CLASSES of N (1 - e) = c."""
+    return next(i for i, (lo, hi) in enumerate(CLASSES) if lo <= c < hi)
+
+
+def class_label(cls):
+    lo, hi = CLASSES[cls]
+    return "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
 
 
 def clamp_x(N, e):
@@ -128,7 +138,7 @@ def main(argv):
     cells = collections.defaultdict(list)
     for N, e, T0, lk, y, y0 in data:
         c = N * (1.0 - e)
-        cls = next(i for i, (lo, hi) in enumerate(CLASSES) if lo <= c < hi)
+        cls = class_of(c)
         cells[(cls, round(lk))].append((y, y0))
     within = lambda v: 100.0 * np.mean(np.abs(v) < math.log(2.0))
 
