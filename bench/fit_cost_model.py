@@ -5,7 +5,10 @@ The model: ln(seconds per unit of simulated time) = sum_j c_j f_j(N, e, k, T0), 
 of cost_model.cpp (features() below, in the same order), fitted by weighted least squares. N is held
 in the box 3 <= N <= 150 and log10 k in 5 ... 10; beyond N = 150 the feature ln(N / 150) carries the
 power of N the cost grows with (fitted here with the rest). x = ln(1 + N (1 - e)) is the column's
-own, held at N (1 - e) <= 135.
+own, held at N (1 - e) <= 135; the polynomial in x stops at N (1 - e) = 30, and beyond it (the
+power-law side) the rate is a line in x whose slope depends on N: a cubic through the smaller
+columns turned over there and made N = 150 at e = 0.1 2.5 times cheaper than e = 0.4, where the
+measured cost hardly depends on e.
 
     /usr/bin/python3 bench/fit_cost_model.py [sample.txt ...] [--short 10 --long 40 --settle 40]
                                              [--runs runs.txt ...] [--seeds odd|even|all]
@@ -14,7 +17,9 @@ own, held at N (1 - e) <= 135.
 bench/cost_model_check.sh --list writes them, or a query of a results store, docs/benchmarks.md):
 their time (CPU time where stored) over T + transient is the rate, free of the start-up effects that
 make a sample's millisecond timings unreliable; --seeds keeps only those with odd or even seeds, so
-that the others can check the model. The positional sample files (bench/paper_cost.sh --list) give
+that the others can check the model. FILE@FACTOR: the list's runs were timed on a machine FACTOR times
+slower than the calibration machine (bench/machine_factor.sh measures it); their times are divided
+by it, so that every list fits the calibration machine's seconds. The positional sample files (bench/paper_cost.sh --list) give
 each point's settled rate, (long - short) / (LONG - SHORT), or the mean over the long run where that
 is larger; points whose long run took under 0.05 s weigh 0.05 (mostly the run's fixed overhead).
 
@@ -29,15 +34,20 @@ import numpy as np
 from fit_high_k_cost import class_label, class_of  # the tables' classes of N (1 - e)
 
 
+C_POLY = 30.0  # kXPolynomialMax = ln(1 + C_POLY): the polynomial in x stops at N (1 - e) = 30, a line beyond
+
+
 def features(N, e, k, T0):
     """The model's features; keep in step with exact_log_rate() in src/sweep/cost_model.cpp."""
     n = min(max(N, 3.0), 150.0)
     lN = math.log(n)
-    x = min(math.log1p(N * (1.0 - e)), math.log1p(135.0))
+    xc = min(math.log1p(N * (1.0 - e)), math.log1p(135.0))
+    x = min(xc, math.log1p(C_POLY))
+    h = xc - x  # how far the column lies beyond N (1 - e) = 30, on the power-law side
     lk = min(max(math.log10(k) - 5.0, 0.0), 5.0)
     beyond = math.log(N / 150.0) if N > 150.0 else 0.0
     return [1.0, lN, lN * lN, x, x * x, x ** 3, lk, lk * x, lk * x * x, lk * lN, x * lN, lk * lk, math.log(T0),
-            beyond, lk * lk * x, lk * x * lN]
+            beyond, lk * lk * x, lk * x * lN, h, h * lN]
 
 
 def main():
@@ -64,10 +74,12 @@ def main():
             # Runs of a few milliseconds are timed at start-up clock speeds: they weigh little.
             weights.append(1.0 if wl >= 0.05 else 0.05)
     for runs in a.runs:
-        for line in open(runs):
+        path, _, factor = runs.partition("@")
+        factor = float(factor) if factor else 1.0
+        for line in open(path):
             f = line.split()
             N, e, k, T0, T, tr, wall, seed = (float(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]),
-                                              float(f[5]), float(f[7]), f[8])
+                                              float(f[5]), float(f[7]) / factor, f[8])
             if a.seeds != "all" and (int(seed[-1]) % 2 == 1) != (a.seeds == "odd"):
                 held_rows.append(features(N, e, k, T0))
                 held_rates.append(wall / (T + tr))
