@@ -75,7 +75,12 @@ def main():
             weights.append(1.0 if wl >= 0.05 else 0.05)
     for runs in a.runs:
         path, _, factor = runs.partition("@")
-        factor = float(factor) if factor else 1.0
+        try:
+            factor = float(factor) if factor else 1.0
+        except ValueError:
+            factor = 0.0
+        if not factor > 0.0:
+            ap.error("--runs %s: the factor after @ must be a number > 0 (bench/machine_factor.sh prints it)" % runs)
         for line in open(path):
             f = line.split()
             N, e, k, T0, T, tr, wall, seed = (float(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]),

@@ -27,15 +27,20 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 [[ ${#seeds[@]} -gt 0 ]] || seeds=(2882359534326927462 3602164584461212451)
+for s in "${seeds[@]}"; do
+  [[ "$s" =~ ^[0-9]+$ ]] || { echo "machine_factor.sh: seed = '$s' is not a stored run's seed (an integer >= 0)" >&2; exit 2; }
+done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-run_one() {  # seed -> "$work/$seed.json"
+run_one() {  # seed -> "$work/$seed.stored" (CPU s, counts) and "$work/$seed.json" (the run again)
   local row
-  row=$(sqlite3 -separator ' ' "$store" "SELECT N, e, k, T0, T, transient FROM runs WHERE seed = $1 AND engine = 'exact'
-                                          AND setup = 'driven_column' AND cpu_seconds IS NOT NULL LIMIT 1")
+  row=$(sqlite3 -separator ' ' "$store" "SELECT N, e, k, T0, T, transient, cpu_seconds, particle_collisions, floor_hits
+                                          FROM runs WHERE seed = $1 AND engine = 'exact' AND setup = 'driven_column'
+                                          AND cpu_seconds IS NOT NULL LIMIT 1")
   [[ -n "$row" ]] || { echo "machine_factor.sh: seed $1 has no timed exact run in $store" >&2; exit 2; }
-  read -r N e k T0 T tr <<< "$row"
+  read -r N e k T0 T tr stored <<< "$row"
+  echo "$stored" > "$work/$1.stored"
   "$granchain" run --N "$N" --e "$e" --k "$k" --T0 "$T0" --T "$T" --transient "$tr" --seed "$1" --no-db -q \
     --json "$work/$1.json"
 }
@@ -55,7 +60,7 @@ status=0
 for s in "${seeds[@]}"; do
   read -r cpu pc fh <<< "$(/usr/bin/python3 -c "import json, sys; d = json.load(open(sys.argv[1]))
 print(d['cost']['cpu_seconds'], d['observables']['particle_collisions'], d['observables']['floor_hits'])" "$work/$s.json")"
-  read -r stored spc sfh <<< "$(sqlite3 -separator ' ' "$store" "SELECT cpu_seconds, particle_collisions, floor_hits FROM runs WHERE seed = $s AND cpu_seconds IS NOT NULL LIMIT 1")"
+  read -r stored spc sfh < "$work/$s.stored"
   if [[ "$pc $fh" != "$spc $sfh" ]]; then
     echo "seed $s: counts $pc, $fh here against $spc, $sfh stored: not the same trajectory" >&2
     status=1

@@ -2,7 +2,7 @@
 # bench/machine_factor.sh on a store of its own: a stored run run again from its seed repeats its
 # trajectory (equal counts, exit 0, one ratio and the geometric mean printed); a stored count that
 # the run does not repeat is reported as another trajectory (exit 1); a seed the store lacks is
-# refused (exit 2).
+# refused (exit 2), and so is a seed that is not an integer.
 set -euo pipefail
 binary=${1:?usage: machine_factor_test.sh GRANCHAIN}
 repo=$(cd "$(dirname "$0")/../.." && pwd)
@@ -29,4 +29,9 @@ status=0
 bash "$repo/bench/machine_factor.sh" --granchain "$binary" --store store.db 99 > out.txt 2> err.txt || status=$?
 [ "$status" -eq 2 ] || fail "a seed not stored gave exit $status"
 grep -q "seed 99 has no timed exact run" err.txt || fail "missing seed: $(cat err.txt)"
+
+status=0
+bash "$repo/bench/machine_factor.sh" --granchain "$binary" --store store.db "1; DROP TABLE runs" > out.txt 2> err.txt || status=$?
+[ "$status" -eq 2 ] || fail "a seed that is not an integer gave exit $status"
+grep -q "seed = .* is not a stored run.s seed" err.txt || fail "bad seed: $(cat err.txt)"
 echo "machine_factor_test: ok"
