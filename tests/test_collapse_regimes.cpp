@@ -482,7 +482,8 @@ TEST(CollapseRegimes, AcrossNFitsTheBoundaryAndTheCurvatureSignChange) {
 // interval of k). With log10 n_coll = a x + b x^2 (x = log10 k) the local exponent over [x, x + 1]
 // is a + b (2x + 1) exactly; a = 0.1 L + 0.05 and b = 0.005 L - 0.002 (L = log10 N) make it
 // (0.1 + 0.005 (2x + 1)) L + (0.05 - 0.002 (2x + 1)). N = 300 has only k = 1e8 ... 1e10 (two
-// intervals, five N there), N = 400 only 1e10 ... 1e12 (intervals no other N has: no line).
+// intervals, five N there), N = 400 only 1e10 ... 1e12 (intervals no other N has: no line), N = 500
+// only 1e9 and 1e10: too few k to classify, but its one local exponent joins the 1e9 - 1e10 line.
 TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
   std::vector<NcollRun> runs;
   auto add = [&runs](int N, const std::vector<double>& ks) {
@@ -496,6 +497,7 @@ TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
   for (int N : {25, 50, 100, 200}) add(N, kGrid);
   add(300, {1e8, 1e9, 1e10});
   add(400, {1e10, 1e11, 1e12});
+  add(500, {1e9, 1e10});
   const RegimeReport r = analyze_runs(runs, 1e6);
   ASSERT_EQ(r.across.size(), 1u);
   const auto& lines = r.across.front().local_alpha_lines;
@@ -505,7 +507,9 @@ TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
     EXPECT_NEAR(l.fit.slope, 0.1 + 0.005 * s, 1e-9) << l.k1;
     EXPECT_NEAR(l.fit.intercept, 0.05 - 0.002 * s, 1e-9) << l.k1;
     EXPECT_LT(l.fit.chi2, 1e-12) << l.k1;
-    const std::vector<int> expected = x >= 8 ? std::vector<int>{25, 50, 100, 200, 300} : std::vector<int>{25, 50, 100, 200};
+    const std::vector<int> expected = x >= 9   ? std::vector<int>{25, 50, 100, 200, 300, 500}
+                                      : x >= 8 ? std::vector<int>{25, 50, 100, 200, 300}
+                                               : std::vector<int>{25, 50, 100, 200};
     EXPECT_EQ(l.Ns, expected) << l.k1;
     EXPECT_EQ(l.fit.dof, static_cast<int>(expected.size()) - 2) << l.k1;
     // On one law in log N the same-e readings agree: every neighbour slope is the line's slope, and
@@ -519,4 +523,10 @@ TEST(CollapseRegimes, LocalExponentsAcrossNFitOneLinePerIntervalOfK) {
     EXPECT_EQ(l.excess.N, expected.back()) << l.k1;
     EXPECT_NEAR(l.excess.excess, 0.0, 1e-9) << l.k1;
   }
+  for (const auto& f : r.families)
+    if (f.N == 500) {
+      EXPECT_FALSE(f.has_alpha_bar);
+      ASSERT_EQ(f.local_alpha_bar.size(), 1u);
+      EXPECT_NEAR(f.local_alpha_bar.front().alpha, (0.1 + 0.005 * 19) * std::log10(500.0) + 0.05 - 0.002 * 19, 1e-9);
+    }
 }

@@ -137,6 +137,10 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
           fam.alphas.push_back({e, curve.c.power_fit.alpha, curve.c.power_fit.alpha_error});
           fam.local_alpha_by_e[e] = local_exponents(curve.n_coll_of_k);
         }
+      } else if (asymptotic == 2 && table1_e(e)) {
+        // Too few k to classify or fit, but a local exponent needs only two: a large column
+        // measured at two k on the power-law side still enters the across-N lines of its interval.
+        fam.local_alpha_by_e[e] = local_exponents(curve.n_coll_of_k);
       }
       fam.curves.push_back(std::move(curve));
     }
@@ -167,6 +171,8 @@ RegimeReport analyze_runs(const std::vector<NcollRun>& runs, double k_min) {
     if (!fam.alphas.empty()) {
       fam.alpha_bar = mean_exponent(fam.alphas);
       fam.has_alpha_bar = true;
+    }
+    if (!fam.local_alpha_by_e.empty()) {
       std::vector<std::vector<LocalExponent>> per_e;
       for (const auto& [e, locals] : fam.local_alpha_by_e) per_e.push_back(locals);
       fam.local_alpha_bar = mean_local_exponents(per_e);

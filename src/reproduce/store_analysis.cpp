@@ -384,7 +384,7 @@ std::string analysis_text(const StoreAnalysis& a) {
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
                f.e_c2.found ? fmt::format("{:.4g} .. {:.4g}", f.e_c2.low, f.e_c2.high) : "not found",
                f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-");
-    if (f.has_alpha_bar)
+    if (!f.local_alpha_bar.empty())
       out += fmt::format("    local alpha per interval of k (mean over e = 0.1..0.4): {}\n", local_exponents_text(f.local_alpha_bar));
     const analysis::E_c1Estimate& x = f.e_c1_estimate;
     if (f.e_c1.found)
