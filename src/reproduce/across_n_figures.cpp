@@ -311,7 +311,7 @@ FigureOutcome reproduce_table1(const ReproduceFlags& o, ReproductionLog& log) {
       table += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} | {} | {} |\n", f.N, f.kT0, critical_text(f.e_c1), bracket_text(boundary), row.ec1,
                            bracket_text(f.e_c2), critical_text(f.e_c2_sign), row.ec2,
                            f.has_alpha_bar ? plus_minus(f.alpha_bar.value, f.alpha_bar.error) : "-", row.alpha);
-      if (f.has_alpha_bar)
+      if (!f.local_alpha_bar.empty())
         locals += fmt::format("- N = {}, k_B T0 = {:g}: {}\n", f.N, f.kT0, local_exponents_text(f.local_alpha_bar));
       auto num = [](bool has, double v) { return has ? fmt::format("{}", v) : std::string(); };
       csv += fmt::format("{},{:g},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", f.N, f.kT0, num(f.e_c1.found, f.e_c1.value),
