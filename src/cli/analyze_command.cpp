@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cli/interrupt_message.hpp"
@@ -12,6 +13,7 @@
 #include "cli/row_filters.hpp"
 #include "cli/subcommand.hpp"
 #include "cli/exit_codes.hpp"
+#include "engines/engine_registry.hpp"
 #include "store/results_store.hpp"
 
 namespace granchain {
@@ -19,7 +21,7 @@ namespace granchain {
 namespace {
 
 struct AnalyzeFlags {
-  std::string db = "granchain.db", engine, json_path, plot_prefix;
+  std::string db = "granchain.db", engine, pool_engines, json_path, plot_prefix;
   RowFilters filters;
   double k_min = 0;
   CLI::Option* json_option = nullptr;
@@ -27,6 +29,29 @@ struct AnalyzeFlags {
 };
 
 int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_);
+
+// --pool-engines: two or more distinct engines with a k axis (soft spheres), comma-separated.
+EnginePool parse_engine_pool(const std::string& text) {
+  const auto refuse = [&text] {
+    std::string soft;
+    for (const EngineInfo& e : engines())
+      if (!e.hard_spheres) soft += fmt::format("{}{}", soft.empty() ? "" : ", ", e.name);
+    return InputError(fmt::format("--pool-engines = '{}' is not valid; valid: two or more distinct engines of {} "
+                                  "(soft spheres, comma-separated)",
+                                  text, soft));
+  };
+  EnginePool pool;
+  std::size_t from = 0;
+  while (from <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', from), text.size());
+    const EngineInfo* e = find_engine(std::string_view(text).substr(from, comma - from));
+    if (e == nullptr || e->hard_spheres || pool.pools(e->kind)) throw refuse();
+    pool.members.push_back(e->kind);
+    from = comma + 1;
+  }
+  if (pool.members.size() < 2) throw refuse();
+  return pool;
+}
 
 }  // namespace
 
@@ -47,6 +72,10 @@ Subcommand add_analyze_command(CLI::App& app) {
   sub_->add_option("--db", impl_->db, "results store to read; default granchain.db")->type_name("FILE");
   impl_->filters.add_to(sub_, "runs");
   sub_->add_option("--engine", impl_->engine, "only this engine (default: all, each analysed apart)");
+  sub_->add_option("--pool-engines", impl_->pool_engines,
+                   "analyse the runs of these engines as one (e.g. exact,reference), where they have been shown to agree: "
+                   "a point's runs of either combine by weighted mean, and the families are named exact+reference")
+      ->type_name("LIST");
   sub_->add_option("--k-min", impl_->k_min, "start of the asymptotic range: only k >= k-min enters the fits; default 0");
   impl_->json_option = sub_->add_option("--json", impl_->json_path, "write the analysis as JSON to FILE, or to standard output")
                            ->expected(0, 1)
@@ -66,9 +95,16 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   const bool json_requested = o.json_option->count() > 0;
   const bool json_stdout = json_requested && (o.json_path.empty() || is_standard_output(o.json_path));
   ExportSelection sel;
+  EnginePool pool;
   try {
     o.filters.apply(sel);
     if (!o.engine.empty()) sel.engines = {o.engine};
+    if (!o.pool_engines.empty()) {
+      if (!o.engine.empty())
+        throw InputError(fmt::format("--pool-engines = '{}' and --engine = '{}' exclude each other: give one of them",
+                                     o.pool_engines, o.engine));
+      pool = parse_engine_pool(o.pool_engines);
+    }
     if (!(o.k_min >= 0 && std::isfinite(o.k_min)))
       throw InputError(fmt::format("--k-min = {} is out of range; valid range: finite k-min >= 0", o.k_min));
     if (json_requested && !json_stdout) check_output_file(o.json_path, "--json", {{"--db", o.db}});
@@ -80,7 +116,7 @@ int execute_analyze(const std::shared_ptr<AnalyzeFlags>& impl_) {
   }
   StoreAnalysis a;
   try {
-    a = analyze_store(o.db, sel, o.k_min);
+    a = analyze_store(o.db, sel, o.k_min, pool);
   } catch (const StoreError& e) {
     fmt::print(stderr, "granchain: error: {}\n", e.what());
     return kExitBadInput;

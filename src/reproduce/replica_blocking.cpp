@@ -8,7 +8,8 @@
 namespace granchain {
 
 std::map<FamilyKey, std::map<double, CurveScatter>> blocking_against_replicas(const std::string& db, const std::vector<StoredRun>& rows,
-                                                                              const std::set<std::int64_t>& left_out) {
+                                                                              const std::set<std::int64_t>& left_out,
+                                                                              const EnginePool& pool) {
   const std::map<std::int64_t, std::vector<BlockingLevel>> curves = read_n_coll_blocking(db);
   if (curves.empty()) return {};
   // Runs of one point differ only in their seeds (point_key_without_seed); by family and k.
@@ -16,7 +17,7 @@ std::map<FamilyKey, std::map<double, CurveScatter>> blocking_against_replicas(co
   for (const StoredRun& r : rows) {
     const auto c = curves.find(r.id);
     if (c == curves.end() || r.setup != "driven_column" || left_out.count(r.id)) continue;
-    const FamilyKey f{r.spec.engine.kind, r.spec.drive, r.spec.params.N, r.spec.params.kT0};
+    const FamilyKey f{pool.family_engine(r.spec.engine.kind), r.spec.drive, r.spec.params.N, r.spec.params.kT0};
     points[f][r.spec.params.k][point_key_without_seed(r.spec)].push_back({r.n_coll, r.n_coll_err, c->second});
   }
   std::map<FamilyKey, std::map<double, CurveScatter>> out;

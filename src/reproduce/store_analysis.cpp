@@ -25,7 +25,8 @@ namespace {
 // largest k stored (replicas combined per particle by weighted mean), against the elastic
 // column's sigma_0,i (theory/equilibrium_column) at the same N, k, T0.
 std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const std::string& db, ExportSelection sel,
-                                                                          const std::set<std::int64_t>& left_out) {
+                                                                          const std::set<std::int64_t>& left_out,
+                                                                          const EnginePool& pool) {
   // (engine, N, T0, e) -> k -> particle -> sums for K and sigma: w, w K, w sigma (weights 1/err^2)
   std::map<FamilyKey, std::map<double, std::map<double, std::map<int, std::array<double, 4>>>>> acc;
   std::map<std::tuple<int, double, double>, ChainParameters> params;
@@ -36,7 +37,7 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       continue;
     const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{row.spec.engine.kind, row.spec.drive, row.spec.params.N, row.spec.params.kT0};
+    const FamilyKey key{pool.family_engine(row.spec.engine.kind), row.spec.drive, row.spec.params.N, row.spec.params.kT0};
     const double e = row.spec.params.e, k = row.spec.params.k;
     auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);
@@ -161,11 +162,12 @@ void put_drive(nlohmann::json& j, const DriveSpec& d) {
 
 }  // namespace
 
-StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min) {
+StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min, const EnginePool& pool) {
   ExportSelection sel = selection;
   sel.table = ExportTable::Runs;
   StoreAnalysis a;
   a.k_min = k_min;
+  a.pool = pool;
   std::vector<analysis::NcollRun> runs;
   const std::vector<StoredRun> rows = read_runs(db, sel);
   for (const StoredRun& row : rows) {
@@ -175,7 +177,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     a.run_seconds += seconds;
     a.costs.push_back({row.spec.params.N, seconds, estimate_cost_seconds(row.spec)});
     analysis::NcollRun run;
-    run.engine = row.spec.engine.kind;
+    run.engine = pool.family_engine(row.spec.engine.kind);
     run.drive = row.spec.drive;
     run.N = row.spec.params.N;
     run.kT0 = row.spec.params.kT0;
@@ -194,8 +196,8 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   a.report = analysis::analyze_runs(runs, k_min);
   std::set<std::int64_t> left_out;
   for (const auto& x : a.report.excluded) left_out.insert(x.run_id);
-  a.blocking_checks = blocking_against_replicas(db, rows, left_out);
-  a.condensation = condensation_by_family(db, sel, left_out);
+  a.blocking_checks = blocking_against_replicas(db, rows, left_out, pool);
+  a.condensation = condensation_by_family(db, sel, left_out, pool);
   nlohmann::json& j = a.json;
   j = {{"k_min", k_min}, {"runs", a.runs}, {"families", nlohmann::json::array()}, {"across_N", nlohmann::json::array()}};
   for (const auto& f : a.report.families) {
@@ -239,7 +241,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
       }
       curves.push_back(cj);
     }
-    j["families"].push_back({{"engine", engine_name(f.engine)}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
+    j["families"].push_back({{"engine", pool.label(f.engine)}, {"N", f.N}, {"T0", f.kT0}, {"curves", curves}, {"e_c1", critical_json(f.e_c1)},
                              {"e_c1_estimate", e_c1_json(f.e_c1_estimate)},
                              {"local_alpha_bar", local_exponents_json(f.local_alpha_bar)},
                              {"e_c2", critical_json(f.e_c2)},
@@ -254,7 +256,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
   }
   j["excluded"] = nlohmann::json::array();
   for (const auto& x : a.report.excluded) {
-    j["excluded"].push_back({{"run_id", x.run_id}, {"engine", engine_name(x.engine)}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
+    j["excluded"].push_back({{"run_id", x.run_id}, {"engine", pool.label(x.engine)}, {"N", x.N}, {"T0", x.kT0}, {"e", x.e},
                              {"k", std::isfinite(x.k) ? nlohmann::json(x.k) : nlohmann::json(nullptr)}, {"reason", x.reason}});
     put_drive(j["excluded"].back(), x.drive);
   }
@@ -262,7 +264,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
     auto inv = [](bool has, const analysis::InverseNFit& f) {
       return has ? nlohmann::json{{"A", f.A}, {"A_err", f.A_error}, {"chi2", f.chi2}, {"dof", f.dof}} : nlohmann::json(nullptr);
     };
-    j["across_N"].push_back({{"engine", engine_name(a.engine)}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
+    j["across_N"].push_back({{"engine", pool.label(a.engine)}, {"T0", a.kT0}, {"A_ec1", inv(a.has_A1, a.A1)}, {"A_ec2", inv(a.has_A2, a.A2)},
                              {"A_boundary", inv(a.has_A1_boundary, a.A1_boundary)}, {"A_ec2_curvature_sign", inv(a.has_A2_sign, a.A2_sign)},
                              {"alpha_vs_log10_N", a.has_alpha_fit ? nlohmann::json{{"slope", a.alpha_fit.slope},
                                                                                    {"slope_err", a.alpha_fit.slope_error},
@@ -316,7 +318,7 @@ std::string same_e_text(const analysis::LocalAlphaLine& l) {
 
 }  // namespace
 
-std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
+std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded, const EnginePool& pool) {
   if (excluded.empty()) return "";
   // Runs left out for one reason at one (engine, drive, N, T0, e, k), named together.
   std::map<std::tuple<std::string, EngineKind, int, double, double, double, DriveSpec>, std::vector<std::int64_t>> groups;
@@ -325,7 +327,7 @@ std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
   for (const auto& [g, ids] : groups) {
     std::string list;
     for (std::int64_t id : ids) list += fmt::format("{}{}", list.empty() ? "" : ", ", id);
-    out += fmt::format("  engine {}{}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", engine_name(std::get<1>(g)),
+    out += fmt::format("  engine {}{}, N = {}, T0 = {:g}, e = {:g}, k = {:g}: run{} {}: {}\n", pool.label(std::get<1>(g)),
                        drive_label(std::get<6>(g)), std::get<2>(g), std::get<3>(g), std::get<4>(g), std::get<5>(g),
                        ids.size() == 1 ? "" : "s", list, std::get<0>(g));
   }
@@ -333,16 +335,16 @@ std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded) {
 }
 
 std::string excluded_markdown(const StoreAnalysis& a) {
-  const std::string text = excluded_text(a.report.excluded);
+  const std::string text = excluded_text(a.report.excluded, a.pool);
   return text.empty() ? "" : "\nRuns the analysis could not use (granchain analyze lists them the same way):\n\n```\n" + text + "```\n";
 }
 
 std::string analysis_text(const StoreAnalysis& a) {
   std::string out;
   out += fmt::format("{} runs; asymptotic range k >= {}\n", a.runs, power_of_ten_text(a.k_min));
-  out += excluded_text(a.report.excluded);
+  out += excluded_text(a.report.excluded, a.pool);
   for (const auto& f : a.report.families) {
-    out += fmt::format("\nengine {}{}, N = {}, T0 = {:g}\n", engine_name(f.engine), drive_label(f.drive), f.N, f.kT0);
+    out += fmt::format("\nengine {}{}, N = {}, T0 = {:g}\n", a.pool.label(f.engine), drive_label(f.drive), f.N, f.kT0);
     out += fmt::format("{:>8} {:>4} {:>14} {:>20} {:>16} {:>22}  {}\n", "e", "k's", "regime", "b (per decade)", "alpha", "curvature",
                "K_i inversion (at largest k)");
     const auto fc = a.condensation.find({f.engine, f.drive, f.N, f.kT0});
@@ -413,9 +415,10 @@ std::string analysis_text(const StoreAnalysis& a) {
       for (const auto& [k, s] : b->second) out += "      " + curve_scatter_text(k, s) + "\n";
     }
   }
+  const EnginePool& pool = a.pool;
   for (const auto& a : a.report.across) {
     if (!(a.has_A1 || a.has_A2 || a.has_A1_boundary || a.has_A2_sign || a.has_alpha_fit || !a.local_alpha_lines.empty())) continue;
-    out += fmt::format("\nacross N (engine {}{}, T0 = {:g}):", engine_name(a.engine), drive_label(a.drive), a.kT0);
+    out += fmt::format("\nacross N (engine {}{}, T0 = {:g}):", pool.label(a.engine), drive_label(a.drive), a.kT0);
     if (a.has_A1) out += fmt::format("  1 - e_c1 = A/N with A = {}", plus_minus(a.A1.A, a.A1.A_error, 2));
     if (a.has_A2) out += fmt::format("  1 - e_c2 = A/N with A = {}", plus_minus(a.A2.A, a.A2.A_error, 2));
     if (a.has_A1_boundary)

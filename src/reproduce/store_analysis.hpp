@@ -10,6 +10,7 @@
 
 #include "analysis/condensation.hpp"
 #include "analysis/regime_report.hpp"
+#include "reproduce/engine_pool.hpp"
 #include "reproduce/replica_blocking.hpp"
 #include "store/output_file.hpp"
 #include "store/store_export.hpp"
@@ -37,6 +38,7 @@ struct StoreAnalysis {
   double run_seconds = 0;  // the runs' stored CPU times (wall times for runs stored without one), summed
   std::vector<RunCost> costs;  // per run, in the store's order
   double k_min = 0;
+  EnginePool pool;  // the engines analysed as one (empty: each apart); names the families
   analysis::RegimeReport report;
   std::map<FamilyKey, std::map<double, Condensation>> condensation;  // by e
   // The replicas' scatter against their blocking curves, by family and k (reproduce/replica_blocking.hpp).
@@ -55,14 +57,15 @@ std::string power_of_ten_text(double k);
 std::string local_exponents_text(const std::vector<analysis::LocalExponent>& l);
 nlohmann::json local_exponents_json(const std::vector<analysis::LocalExponent>& l);
 
-// Throws StoreError when the store cannot be read.
-StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min);
+// Throws StoreError when the store cannot be read. Runs of the engines in `pool` are analysed as one
+// engine (reproduce/engine_pool.hpp).
+StoreAnalysis analyze_store(const std::string& db, const ExportSelection& selection, double k_min, const EnginePool& pool = {});
 std::string analysis_text(const StoreAnalysis& a);
 // Per N: runs, measured and predicted CPU-hours, the geometric mean of the runs' measured / predicted
 // and how many lie within a factor of 2 (a Markdown table; "" when no run is stored).
 std::string cost_markdown(const std::vector<RunCost>& costs);
 // The runs the analysis left out, grouped by point, each with its reason ("" if none).
-std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded);
+std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded, const EnginePool& pool = {});
 // The same as a report section (Markdown), "" if none.
 std::string excluded_markdown(const StoreAnalysis& a);
 // Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>[_<drive>_A<A>_w<omega>].png/.pdf;
