@@ -74,7 +74,7 @@ Subcommand add_analyze_command(CLI::App& app) {
   sub_->add_option("--engine", impl_->engine, "only this engine (default: all, each analysed apart)");
   sub_->add_option("--pool-engines", impl_->pool_engines,
                    "analyse the runs of these engines as one (e.g. exact,reference), where they have been shown to agree: "
-                   "a point's runs of either combine by weighted mean, and the families are named exact+reference")
+                   "a point's runs of either combine as its replicas, and the families are named exact+reference")
       ->type_name("LIST");
   sub_->add_option("--k-min", impl_->k_min, "start of the asymptotic range: only k >= k-min enters the fits; default 0");
   impl_->json_option = sub_->add_option("--json", impl_->json_path, "write the analysis as JSON to FILE, or to standard output")
