@@ -17,7 +17,7 @@ std::map<FamilyKey, std::map<double, CurveScatter>> blocking_against_replicas(co
   for (const StoredRun& r : rows) {
     const auto c = curves.find(r.id);
     if (c == curves.end() || r.setup != "driven_column" || left_out.count(r.id)) continue;
-    const FamilyKey f{pool.family_engine(r.spec.engine.kind), r.spec.drive, r.spec.params.N, r.spec.params.kT0};
+    const FamilyKey f = family_key(r.spec, pool);
     points[f][r.spec.params.k][point_key_without_seed(r.spec)].push_back({r.n_coll, r.n_coll_err, c->second});
   }
   std::map<FamilyKey, std::map<double, CurveScatter>> out;

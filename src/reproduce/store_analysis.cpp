@@ -37,7 +37,7 @@ std::map<FamilyKey, std::map<double, Condensation>> condensation_by_family(const
       continue;
     const double kerr = row.K_err, serr = row.z_std_err;
     if (!(kerr > 0) || !(serr > 0)) continue;
-    const FamilyKey key{pool.family_engine(row.spec.engine.kind), row.spec.drive, row.spec.params.N, row.spec.params.kT0};
+    const FamilyKey key = family_key(row.spec, pool);
     const double e = row.spec.params.e, k = row.spec.params.k;
     auto& a = acc[key][e][k][row.i];
     a[0] += 1.0 / (kerr * kerr);

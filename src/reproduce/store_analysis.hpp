@@ -65,7 +65,7 @@ std::string analysis_text(const StoreAnalysis& a);
 // and how many lie within a factor of 2 (a Markdown table; "" when no run is stored).
 std::string cost_markdown(const std::vector<RunCost>& costs);
 // The runs the analysis left out, grouped by point, each with its reason ("" if none).
-std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded, const EnginePool& pool = {});
+std::string excluded_text(const std::vector<analysis::ExcludedRun>& excluded, const EnginePool& pool);
 // The same as a report section (Markdown), "" if none.
 std::string excluded_markdown(const StoreAnalysis& a);
 // Writes PREFIX.json and the panels PREFIX_N<N>_T0<T0>_<engine>[_<drive>_A<A>_w<omega>].png/.pdf;
