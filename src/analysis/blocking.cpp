@@ -6,11 +6,26 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "model/state_archive.hpp"
+
 namespace granchain {
 
 BinnedSums::BinnedSums(int bins, int components)
     : bins_(bins), components_(components), data_(static_cast<std::size_t>(bins) * components, 0.0) {
   if (bins < 1 || (bins & (bins - 1)) != 0) throw std::invalid_argument("BinnedSums: bins must be a power of two");
+}
+
+void BinnedSums::save(StateArchive& out) const {
+  out["bins"] = bins_;
+  out["components"] = components_;
+  out["sums"] = pack_array(data_);
+}
+
+void BinnedSums::restore(const StateArchive& in) {
+  if (saved_value<int>(in, "bins") != bins_ || saved_value<int>(in, "components") != components_) {
+    throw StateArchiveError("saved state: binned sums of another shape");
+  }
+  data_ = unpack_array<double>(in, "sums", data_.size());
 }
 
 std::vector<double> BinnedSums::totals() const {

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "model/state_archive_fwd.hpp"
+
 namespace granchain {
 
 struct Estimate {
@@ -36,6 +38,9 @@ class BinnedSums {
   double* bin(int b) { return data_.data() + static_cast<std::size_t>(b) * components_; }
   const double* bin(int b) const { return data_.data() + static_cast<std::size_t>(b) * components_; }
   std::vector<double> totals() const;
+  // Every bin's sums (model/state_archive.hpp); restore requires the same bins and components.
+  void save(StateArchive& out) const;
+  void restore(const StateArchive& in);
 
  private:
   int bins_, components_;

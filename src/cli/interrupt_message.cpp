@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cstring>
 
 namespace granchain {
@@ -28,6 +29,9 @@ void on_signal(int sig) {
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
+
+volatile sig_atomic_t recorded = 0;
+void record_signal(int sig) { recorded = sig; }
 
 template <std::size_t Size>
 std::size_t store(std::array<char, Size>& buffer, const std::string& text) {
@@ -64,5 +68,23 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
   sigaction(SIGTERM, &sa, nullptr);
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
+
+void record_interrupts() {
+  struct sigaction sa {};
+  sa.sa_handler = record_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+int recorded_interrupt() { return recorded; }
+
+void reraise_interrupt(int sig) {
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+  std::_Exit(128 + sig);  // not reached: the default action ends the process
+}
+
+const char* interrupt_name(int sig) { return sig == SIGINT ? "SIGINT" : "SIGTERM"; }
 
 }  // namespace granchain

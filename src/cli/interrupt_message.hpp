@@ -15,4 +15,14 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::string& 
 // The same with up to four unfinished files.
 void announce_on_interrupt(const std::string& what_was_kept, const std::vector<std::string>& unfinished_files);
 
+// For a run that saves its state before it stops (run --checkpoint): SIGINT and SIGTERM are only
+// recorded, recorded_interrupt() returns the signal (0 before any), and the caller stops at its
+// next sample, saves, says so and ends by the signal with reraise_interrupt. A call of
+// announce_on_interrupt puts the handlers back.
+void record_interrupts();
+int recorded_interrupt();
+[[noreturn]] void reraise_interrupt(int sig);
+// "SIGINT" or "SIGTERM".
+const char* interrupt_name(int sig);
+
 }  // namespace granchain

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "config/config_file.hpp"
+#include "config/run_key.hpp"
 #include "config/input_error.hpp"
 #include "cli/interrupt_message.hpp"
 #include "store/output_file.hpp"
@@ -19,7 +20,10 @@
 #include "cli/run_report.hpp"
 #include "engines/engine.hpp"
 #include "store/results_store.hpp"
+#include "store/run_checkpoint.hpp"
 #include "store/run_json.hpp"
+#include "simulation/cancellation.hpp"
+#include "version.hpp"
 
 namespace granchain {
 
@@ -153,7 +157,9 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     opts.use_db = !impl.no_db;
     if (impl.audit) request_audit(opts);
     // The store is written too: it may not be the config file, nor the JSON the store.
-    check_outputs({{"--db", opts.use_db ? opts.db_path : ""}, {"--json", json_requested && !json_stdout ? impl.json_path : ""}},
+    check_outputs({{"--db", opts.use_db ? opts.db_path : ""},
+                   {"--json", json_requested && !json_stdout ? impl.json_path : ""},
+                   {"--checkpoint", opts.checkpoint_path}},
                   {{"--config", impl.config_path}});
     if (opts.use_db) ResultsStore::preflight(opts.db_path);
   } catch (const InputError& e) {
@@ -178,21 +184,88 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
     if (stored_run) return report_stored_run(impl, opts, *stored_run, json_stdout);
   }
 
-  announce_on_interrupt("the run did not finish; nothing was stored or written");
+  // A checkpoint of this very run (its key: every parameter and the seed) is resumed; one of
+  // another run is refused, so that no state goes on under another run's name.
+  const bool checkpointing = !opts.checkpoint_path.empty();
+  std::optional<RunCheckpoint> checkpoint;
+  if (checkpointing) {
+    try {
+      checkpoint = read_run_checkpoint(opts.checkpoint_path);
+      if (checkpoint && checkpoint->key != point_key(opts.spec)) {
+        throw CheckpointError(fmt::format("'{}' holds the state of another run ({}); give another file, or delete it to start "
+                                          "this run anew",
+                                          opts.checkpoint_path, checkpoint->key));
+      }
+      if (checkpoint) {
+        const SavedRunPlace place = saved_run_place(checkpoint->state);
+        fmt::print(stderr, "granchain: resuming from --checkpoint {} at t = {:.6g} of {:.6g} ({}; saved by granchain {}{})\n",
+                   opts.checkpoint_path, place.t, opts.spec.transient + opts.spec.T, place.in_window ? "measuring" : "transient",
+                   checkpoint->written_by,
+                   checkpoint->written_by == code_version()
+                       ? ""
+                       : fmt::format(", this is {}: bit for bit the same result only if the engine and observers are unchanged",
+                                     code_version()));
+      }
+    } catch (const std::exception& e) {  // CheckpointError, StateArchiveError
+      fmt::print(stderr, "granchain: error: --checkpoint: {}; nothing was run or written\n", e.what());
+      return kExitBadInput;
+    }
+  }
+
+  if (checkpointing) record_interrupts();  // stop at the next sample, save, then end by the signal
+  else announce_on_interrupt("the run did not finish; nothing was stored or written");
   const bool tty = isatty(STDERR_FILENO) != 0;
   const bool show_progress = impl.progress_lines || (tty && !impl.quiet);
   ProgressPrinter printer(tty);
   RunResult result;
+  SavedRunPlace saved{};
+  bool any_saved = false;
   try {
     ProgressCallback cb;
+    const double print_every = tty ? 0.5 : 10.0;
     if (show_progress) cb = [&printer](const RunProgress& p) { printer(p); };
-    result = run_driven_column(opts.spec, cb, tty ? 0.5 : 10.0);
+    RunResumption resumption;
+    if (checkpointing) {
+      // Called every 0.5 s: a signal is seen within that and a sample; lines are printed as before.
+      cb = [&printer, show_progress, print_every, last = -1e300](const RunProgress& p) mutable {
+        if (recorded_interrupt() != 0) throw RunCancelled{};
+        if (show_progress && p.wall_seconds - last >= print_every) {
+          last = p.wall_seconds;
+          printer(p);
+        }
+      };
+      resumption.resume_from = checkpoint ? &checkpoint->state : nullptr;
+      resumption.every = opts.checkpoint_every;
+      const std::string key = point_key(opts.spec);
+      resumption.save = [&, key](const StateArchive& state) {
+        write_run_checkpoint(opts.checkpoint_path, {key, code_version(), state});
+        saved = saved_run_place(state);
+        any_saved = true;
+      };
+    }
+    result = run_driven_column(opts.spec, cb, checkpointing ? 0.5 : print_every, resumption);
     printer.finish();
   } catch (const UnphysicalStateError& e) {
     printer.finish();
-    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written\n", e.what());
+    fmt::print(stderr, "granchain: error: the simulation became unphysical: {}; no result was written{}\n", e.what(),
+               checkpointing ? fmt::format(" (--checkpoint {} is left as it was last saved)", opts.checkpoint_path) : "");
     return kExitUnphysical;
+  } catch (const RunCancelled&) {
+    printer.finish();
+    const int sig = recorded_interrupt();
+    fmt::print(stderr, "\ngranchain: interrupted by {}; the run's state at t = {:.6g} of {:.6g} is saved in {} (the same command "
+                       "resumes it); nothing was stored or written\n",
+               interrupt_name(sig), saved.t, opts.spec.transient + opts.spec.T, opts.checkpoint_path);
+    reraise_interrupt(sig);
+  } catch (const OutputError& e) {  // a checkpoint that could not be written
+    printer.finish();
+    fmt::print(stderr, "granchain: error: {}; the run stopped{}; nothing was stored or written\n", e.what(),
+               any_saved ? fmt::format(" (its state at t = {:.6g} is in the checkpoint saved before)", saved.t) : "");
+    return kExitStoreFailed;
   }
+  if (checkpointing) announce_on_interrupt(fmt::format("the run finished but was not stored or written; --checkpoint {} holds "
+                                                       "its state as last saved",
+                                                       opts.checkpoint_path));
 
   // The run's outputs, all or none: the JSON file is written in full (to a temporary file) inside
   // the store's transaction and renamed into place only once the run is stored. Only a target that
@@ -241,6 +314,12 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       fmt::print(stderr, "granchain: error: {}{}\n", e.what(), kept);
       return kExitStoreFailed;
     }
+  }
+  // The run's outputs are whole: its checkpoint is spent.
+  if (checkpointing) {
+    std::error_code ec;
+    std::filesystem::remove(opts.checkpoint_path, ec);
+    if (ec) fmt::print(stderr, "granchain: warning: --checkpoint {} could not be removed: {}\n", opts.checkpoint_path, ec.message());
   }
   return kExitOk;
 }

@@ -148,6 +148,22 @@ const std::vector<Definition>& definitions() {
                    if (path.empty()) throw InputError("--db: the path is empty; give a file name");
                    o.db_path = std::get<std::string>(v.value);
                  }});
+    d.push_back({{"checkpoint", ParameterType::Path, "",
+                  "keep the run's state in this file as it goes (every checkpoint-every seconds, and when SIGINT or SIGTERM "
+                  "stops it) and resume from it where it exists; removed once the run is stored or written (engines: " +
+                      resumable_engine_list() + ")",
+                  "a file name", "none", kUseRun, EngineScope::Any, false, "", {}},
+                 false, {}, {},
+                 [](RunOptions& o, const Parameter& q, const RawValue& v) {
+                   const std::string path = read_name(q, v);
+                   if (path.empty()) throw InputError("--checkpoint: the path is empty; give a file name");
+                   o.checkpoint_path = path;
+                 }});
+    d.push_back({{"checkpoint-every", ParameterType::Real, "", "wall-clock seconds between two saves of --checkpoint",
+                  "1 <= checkpoint-every <= 1e7", shown(def.checkpoint_every), kUseRun, EngineScope::Any, false, "",
+                  [](double x) { return x >= 1 && x <= 1e7; }},
+                 false, {}, {},
+                 [](RunOptions& o, const Parameter& q, const RawValue& v) { o.checkpoint_every = read_real(q, v); }});
     return d;
   }();
   return defs;
@@ -289,6 +305,25 @@ void check_start_k(const RunOptions& o, const std::map<std::string, RawValue>& r
                                    rounded_bound(k * std::pow(o.spec.drive.omega / omega_max, 2), false), o.spec.drive.omega, p.e, p.m));
 }
 
+// A checkpoint needs an engine that can save its state (EngineInfo::resumable); its interval acts
+// only with it.
+void check_checkpoint(const RunOptions& o, const std::map<std::string, RawValue>& raw) {
+  if (o.checkpoint_path.empty()) {
+    if (raw.count("checkpoint-every")) {
+      const RawValue& given = raw.at("checkpoint-every");
+      throw InputError(fmt::format("--checkpoint-every = {}{}: it acts only with --checkpoint FILE", given.text(), from_where(given)));
+    }
+    return;
+  }
+  const EngineInfo& engine = engine_info(o.spec.engine.kind);
+  if (!engine.resumable || o.spec.engine.start_k > 0) {
+    const RawValue& given = raw.at("checkpoint");
+    throw InputError(fmt::format("--checkpoint = {}{}: the {} engine{} cannot save its state; valid: --engine {}", given.text(),
+                                 from_where(given), engine.name, o.spec.engine.start_k > 0 ? " with its soft start" : "",
+                                 resumable_engine_list()));
+  }
+}
+
 }  // namespace
 
 double default_measuring_time(int N) { return N < 50 ? 1e4 : 1e3; }
@@ -341,6 +376,7 @@ RunOptions resolve_run_options(const std::map<std::string, RawValue>& raw) {
   check_height_scale(o, raw);
   run_table::resolve_drive(o, raw);
   check_start_k(o, raw);
+  check_checkpoint(o, raw);
   // The clock runs from 0 to transient + T: beyond 1e15 a step of order 1 stops advancing it.
   if (!(o.spec.transient + o.spec.T <= 1e15))
     value_out_of_range(raw.count("transient") ? "transient" : "T", given_or(raw, raw.count("transient") ? "transient" : "T",

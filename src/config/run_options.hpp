@@ -15,6 +15,10 @@ struct RunOptions {
   RunSpec spec;
   std::string db_path = "granchain.db";
   bool use_db = true;
+  // A checkpoint (store/run_checkpoint.hpp): the run's state saved to this file every
+  // checkpoint_every wall seconds and when it is interrupted, and resumed from it; "" none.
+  std::string checkpoint_path;
+  double checkpoint_every = 600.0;
 };
 
 // Every parameter that may come from a flag or a config file (config/parameter.hpp).

@@ -8,6 +8,7 @@
 
 #include "engines/events.hpp"
 #include "model/chain_state.hpp"
+#include "model/state_archive_fwd.hpp"
 
 namespace granchain {
 
@@ -47,6 +48,12 @@ class Engine {
   virtual AuditCounters audit() const { return {}; }
   // Smallest natural time increment (the step of a time-stepped engine), 0 if none.
   virtual double time_quantum() const { return 0.0; }
+  // A checkpoint (model/state_archive.hpp), for the engines whose registry entry says resumable:
+  // save writes everything the engine's future depends on, between two advance_to calls; an engine
+  // made for the same run and restored from it goes on bit for bit as the saved one would have.
+  // The others throw std::logic_error.
+  virtual void save(StateArchive& out) const;
+  virtual void restore(const StateArchive& in);
 };
 
 // Raised when the simulation turns unphysical (particles pass through each other, a non-finite

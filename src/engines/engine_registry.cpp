@@ -26,12 +26,12 @@ std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& 
 }  // namespace
 
 const std::vector<EngineInfo>& engines() {
-  //                                        kind                     name          hard   stepped fine  audit
-  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, make_exact},
-                                           {EngineKind::Reference, "reference", false, true, false, false, make_reference},
-                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false,
+  //                                        kind                     name          hard   stepped fine  audit  resumable
+  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, false, make_exact},
+                                           {EngineKind::Reference, "reference", false, true, false, false, true, make_reference},
+                                           {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, true,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, false, make_hard}};
   return all;
 }
 
@@ -50,6 +50,13 @@ const EngineInfo* find_engine(std::string_view name) {
 EngineKind stored_engine_kind(std::string_view name) {
   if (const EngineInfo* e = find_engine(name)) return e->kind;
   throw std::invalid_argument("unknown engine '" + std::string(name) + "' (known: " + engine_name_list() + ")");
+}
+
+std::string resumable_engine_list() {
+  std::string names;
+  for (const EngineInfo& e : engines())
+    if (e.resumable) names += (names.empty() ? "" : ", ") + std::string(e.name);
+  return names;
 }
 
 std::string engine_name_list() {

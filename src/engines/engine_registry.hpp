@@ -1,8 +1,8 @@
 #pragma once
 // What an engine is, written once: its name (on the command line, in stores and point keys),
 // whether it treats the spheres as hard, whether it steps in time (dt = tau_c / dt_factor, then part
-// of a run's identity), whether its clock is a FineTime, whether it has an audit, and how to make
-// one. Every engine runs every drive (model/plate_motion.hpp). The layers ask this registry (by EngineKind) instead of comparing names; names appear only
+// of a run's identity), whether its clock is a FineTime, whether it has an audit, whether a run of it
+// can be saved and resumed, and how to make one. Every engine runs every drive (model/plate_motion.hpp). The layers ask this registry (by EngineKind) instead of comparing names; names appear only
 // where text is read or written.
 #include <memory>
 #include <string>
@@ -38,6 +38,7 @@ struct EngineInfo {
   bool time_stepped;         // fixed steps dt = tau_c / dt_factor: dt_factor is part of a run's identity
   bool fine_clock;           // FineTime clock, resolving 2^-53 ulp(t) at time t; otherwise ulp(t)
   bool has_audit;            // --audit checks it
+  bool resumable;            // Engine::save / restore: a run of it can be checkpointed and resumed
   std::unique_ptr<Engine> (*make)(const EngineChoice&, const ChainParameters&, const ChainState&, FloorDrive*);
 };
 
@@ -51,6 +52,8 @@ const EngineInfo* find_engine(std::string_view name);
 EngineKind stored_engine_kind(std::string_view name);
 // "exact, reference, reference-located, hard": for help texts and error messages.
 std::string engine_name_list();
+// The same for the resumable engines only: "reference, reference-located".
+std::string resumable_engine_list();
 
 std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParameters& p, const ChainState& initial,
                                     FloorDrive* floor);

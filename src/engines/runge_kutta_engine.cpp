@@ -4,11 +4,16 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "model/state_archive.hpp"
+
 namespace granchain {
 
 UnphysicalStateError::UnphysicalStateError(double t, int particle_a, int particle_b,
                                            const std::string& what)
     : std::runtime_error(what), t_(t), a_(particle_a), b_(particle_b) {}
+
+void Engine::save(StateArchive&) const { throw std::logic_error("this engine cannot save its state"); }
+void Engine::restore(const StateArchive&) { throw std::logic_error("this engine cannot restore a saved state"); }
 
 RungeKuttaEngine::RungeKuttaEngine(const ChainParameters& p, const ChainState& initial,
                                    FloorDrive* floor, RungeKuttaOptions options)
@@ -36,6 +41,30 @@ RungeKuttaEngine::RungeKuttaEngine(const ChainParameters& p, const ChainState& i
   plate_D_ = 2.0 * D_;
   for (int i = 0; i + 1 < n_; ++i) touching_[i] = (d_ - (state_.z[i + 1] - state_.z[i])) > 0.0;
   if (plate_ != nullptr) on_plate_ = plate_overlap(state_.t, state_.z[0]) > 0.0;
+  check_state(state_.t);
+}
+
+void RungeKuttaEngine::save(StateArchive& out) const {
+  out["t"] = state_.t;
+  out["z"] = pack_array(state_.z);
+  out["v"] = pack_array(state_.v);
+  out["touching"] = pack_array(touching_);
+  out["on_plate"] = on_plate_;
+  out["steps"] = counters_.steps;
+  out["contact_ends"] = counters_.contact_ends;
+  out["floor_hits"] = counters_.floor_hits;
+}
+
+void RungeKuttaEngine::restore(const StateArchive& in) {
+  const auto n = static_cast<std::size_t>(n_);
+  state_.t = saved_value<double>(in, "t");
+  state_.z = unpack_array<double>(in, "z", n);
+  state_.v = unpack_array<double>(in, "v", n);
+  touching_ = unpack_array<unsigned char>(in, "touching", touching_.size());
+  on_plate_ = saved_value<bool>(in, "on_plate");
+  counters_.steps = saved_value<std::uint64_t>(in, "steps");
+  counters_.contact_ends = saved_value<std::uint64_t>(in, "contact_ends");
+  counters_.floor_hits = saved_value<std::uint64_t>(in, "floor_hits");
   check_state(state_.t);
 }
 

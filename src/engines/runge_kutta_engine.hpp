@@ -32,6 +32,9 @@ class RungeKuttaEngine final : public Engine {
   double time() const override { return state_.t; }
   EngineCounters counters() const override { return counters_; }
   double time_quantum() const override { return dt_; }
+  // The state (t, z, v), the contact set, the plate contact and the counts: all a step reads.
+  void save(StateArchive& out) const override;
+  void restore(const StateArchive& in) override;
 
  private:
   // a_i = -g + (f_{i,i+1} - f_{i-1,i}) / m with f from Eq. (force-0), plus the plate's force on

@@ -8,6 +8,7 @@
 
 #include "model/plate_motion.hpp"
 #include "model/random.hpp"
+#include "model/state_archive_fwd.hpp"
 
 namespace granchain {
 
@@ -21,6 +22,10 @@ class FloorDrive {
   virtual double bounce(double incoming_speed) = 0;
   // The plate's motion, or nullptr for a floor at rest at z = 0.
   virtual const PlateMotion* plate() const { return nullptr; }
+  // What changes as it drives (a random generator, a script's position), for a run's checkpoint
+  // (model/state_archive.hpp); nothing for a drive without such state.
+  virtual void save(StateArchive&) const {}
+  virtual void restore(const StateArchive&) {}
 };
 
 // Flux-weighted Maxwell distribution p(v) = (m v / kT0) exp(-m v^2 / (2 kT0)), v > 0
@@ -30,6 +35,8 @@ class ThermalFloor final : public FloorDrive {
   ThermalFloor(double kT0, double m, std::uint64_t seed);
   double next_speed();
   double bounce(double) override { return next_speed(); }
+  void save(StateArchive& out) const override;
+  void restore(const StateArchive& in) override;
 
  private:
   double two_kT_over_m_;
@@ -43,6 +50,8 @@ class ScriptedFloor final : public FloorDrive {
   double next_speed();  // throws std::out_of_range when the script is used up
   double bounce(double) override { return next_speed(); }
   std::size_t used() const { return next_; }
+  void save(StateArchive& out) const override;
+  void restore(const StateArchive& in) override;
 
  private:
   std::vector<double> speeds_;

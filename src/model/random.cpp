@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
+
+#include "model/state_archive.hpp"
 
 namespace granchain {
 
@@ -24,6 +27,23 @@ double Rng::normal() {
   spare_ = r * std::sin(phi);
   has_spare_ = true;
   return r * std::cos(phi);
+}
+
+// The Mersenne twister's state as the standard's text form (its 312 words), which reads back exactly.
+void Rng::save(StateArchive& out) const {
+  std::ostringstream words;
+  words << engine_;
+  out["mt19937_64"] = words.str();
+  out["spare"] = spare_;
+  out["has_spare"] = has_spare_;
+}
+
+void Rng::restore(const StateArchive& in) {
+  std::istringstream words(saved_value<std::string>(in, "mt19937_64"));
+  words >> engine_;
+  if (words.fail()) throw StateArchiveError("saved state: the random generator's state does not read back");
+  spare_ = saved_value<double>(in, "spare");
+  has_spare_ = saved_value<bool>(in, "has_spare");
 }
 
 }  // namespace granchain

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <random>
 
+#include "model/state_archive_fwd.hpp"
+
 namespace granchain {
 
 // Independent streams drawn from one user seed.
@@ -21,6 +23,9 @@ class Rng {
   double uniform01() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   // Standard normal deviate (Box-Muller, both deviates used).
   double normal();
+  // The generator's whole state (model/state_archive.hpp): restored, it goes on with the same numbers.
+  void save(StateArchive& out) const;
+  void restore(const StateArchive& in);
 
  private:
   std::mt19937_64 engine_;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "model/state_archive.hpp"
+
 namespace granchain {
 
 CollisionCounter::CollisionCounter(double t_begin, double t_end, int bins)
@@ -43,6 +45,19 @@ Estimate CollisionCounter::floor_hit_rate() const {
 
 Estimate CollisionCounter::particle_collision_rate() const {
   return blocked_estimate(sums_, [](std::span<const double> s) { return s[kPP] / s[kTime]; });
+}
+
+void CollisionCounter::save(StateArchive& out) const {
+  out["pp"] = pp_;
+  out["floor"] = floor_;
+  sums_.save(out["bins"]);
+}
+
+void CollisionCounter::restore(const StateArchive& in) {
+  pp_ = saved_value<std::uint64_t>(in, "pp");
+  floor_ = saved_value<std::uint64_t>(in, "floor");
+  if (!in.contains("bins")) throw StateArchiveError("saved state: the collision counter has no bins");
+  sums_.restore(in.at("bins"));
 }
 
 }  // namespace granchain

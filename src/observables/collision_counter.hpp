@@ -27,6 +27,9 @@ class CollisionCounter final : public EventSink {
   Estimate floor_hit_rate() const;
   // Particle-particle collisions per unit time (all pairs together).
   Estimate particle_collision_rate() const;
+  // The counts and bins so far, for a run's checkpoint (model/state_archive.hpp).
+  void save(StateArchive& out) const;
+  void restore(const StateArchive& in);
 
  private:
   // components per bin: particle-particle collisions, floor hits, bin duration

@@ -1,6 +1,8 @@
 #include "observables/contact_durations.hpp"
 
 #include <algorithm>
+
+#include "model/state_archive.hpp"
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -103,6 +105,31 @@ std::vector<PairContacts> ContactDurations::pairs() const {
     p.histogram.assign(first, last);
   }
   return out;
+}
+
+void ContactDurations::save(StateArchive& out) const {
+  out["begin_hi"] = pack_array(begin_hi_);
+  out["begin_lo"] = pack_array(begin_lo_);
+  out["count"] = pack_array(count_);
+  out["before"] = pack_array(before_);
+  out["sum"] = pack_array(sum_);
+  out["longest"] = pack_array(longest_);
+  out["in_window"] = pack_array(in_window_);
+  out["long_in_window"] = pack_array(long_in_window_);
+  out["histogram"] = pack_array(hist_);
+}
+
+void ContactDurations::restore(const StateArchive& in) {
+  const auto n = static_cast<std::size_t>(n_);
+  begin_hi_ = unpack_array<double>(in, "begin_hi", n);
+  begin_lo_ = unpack_array<double>(in, "begin_lo", n);
+  count_ = unpack_array<std::uint64_t>(in, "count", n);
+  before_ = unpack_array<std::uint64_t>(in, "before", n);
+  sum_ = unpack_array<double>(in, "sum", n);
+  longest_ = unpack_array<double>(in, "longest", n);
+  in_window_ = unpack_array<double>(in, "in_window", n);
+  long_in_window_ = unpack_array<double>(in, "long_in_window", n);
+  hist_ = unpack_array<std::uint64_t>(in, "histogram", n * kBins);
 }
 
 }  // namespace granchain

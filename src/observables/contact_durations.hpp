@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engines/events.hpp"
+#include "model/state_archive_fwd.hpp"
 
 namespace granchain {
 
@@ -50,6 +51,9 @@ class ContactDurations final : public EventSink {
   void on_event(const Event& event) override;
   // Pair 0 (the plate) and pairs 1 .. N-1, with the contacts open at t_end counted and aged.
   std::vector<PairContacts> pairs() const;
+  // The open contacts and the durations so far, for a run's checkpoint (model/state_archive.hpp).
+  void save(StateArchive& out) const;
+  void restore(const StateArchive& in);
 
  private:
   void finish(int slot, double duration, bool began_before);

@@ -1,6 +1,8 @@
 #include "observables/profile_sampler.hpp"
 
 #include <algorithm>
+
+#include "model/state_archive.hpp"
 #include <cmath>
 
 namespace granchain {
@@ -59,6 +61,19 @@ std::vector<ParticleProfile> ProfileSampler::profiles() const {
     out[i].kinetic = blocked_estimate(one, [half_m](std::span<const double> s) { return half_m * s[3] / s[0]; });
   }
   return out;
+}
+
+void ProfileSampler::save(StateArchive& out) const {
+  out["taken"] = taken_;
+  out["z_ref"] = pack_array(z_ref_);
+  sums_.save(out["bins"]);
+}
+
+void ProfileSampler::restore(const StateArchive& in) {
+  taken_ = saved_value<std::int64_t>(in, "taken");
+  z_ref_ = unpack_array<double>(in, "z_ref", static_cast<std::size_t>(n_));
+  if (!in.contains("bins")) throw StateArchiveError("saved state: the profile sampler has no bins");
+  sums_.restore(in.at("bins"));
 }
 
 }  // namespace granchain

@@ -29,6 +29,9 @@ class ProfileSampler {
   // The blocking curve of that mean height (analysis/blocking.hpp): how its standard error grows with
   // the block length, which shows the column's slow states (a condensed layer's) where they outlast a block.
   std::vector<BlockingLevel> height_blocking() const;
+  // The samples' sums so far, for a run's checkpoint (model/state_archive.hpp).
+  void save(StateArchive& out) const;
+  void restore(const StateArchive& in);
 
  private:
   // components per bin: sample count, then per particle: sum dz, sum dz^2, sum v^2,

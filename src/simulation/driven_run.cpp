@@ -9,9 +9,11 @@
 #include "engines/plate_flight.hpp"
 #include "model/driven_column.hpp"
 #include "model/floor.hpp"
+#include "model/state_archive.hpp"
 #include "observables/collision_counter.hpp"
 #include "observables/contact_durations.hpp"
 #include "observables/event_fan_out.hpp"
+#include "simulation/cancellation.hpp"
 
 namespace granchain {
 
@@ -28,6 +30,10 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
+SavedRunPlace saved_run_place(const StateArchive& state) {
+  return {saved_value<double>(state, "t"), saved_value<bool>(state, "in_window")};
+}
+
 ChainState hard_sphere_start(ChainState s, const ChainParameters& p, const FloorDrive& floor) {
   const PlateMotion* plate = floor.plate();
   const double surface = plate != nullptr ? plate_flight::piece_state(*plate, s.t).z : 0.0;  // as the hard engine reads it
@@ -36,7 +42,8 @@ ChainState hard_sphere_start(ChainState s, const ChainParameters& p, const Floor
   return s;
 }
 
-RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progress, double progress_every) {
+RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progress, double progress_every,
+                            const RunResumption& resumption) {
   const auto wall0 = Clock::now();
   const double cpu0 = thread_cpu_seconds();
   RunResult r;
@@ -77,6 +84,61 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   EventFanOut window(soft_contacts ? EventFanOut{&counter, &contacts} : EventFanOut{&counter});
 
   EngineCounters before_switch{};  // the soft engine's counts, for a soft start's totals
+
+  // Where the run stands: the transient done up to t_reached, then the window's samples 1 .. j_done.
+  double t_reached = 0.0;
+  std::int64_t j_done = 0;
+  bool in_window = false;
+  double wall_before = 0.0, cpu_before = 0.0;  // spent in the sittings before a resumption
+  const bool saving = static_cast<bool>(resumption.save);
+  if ((saving || resumption.resume_from != nullptr) && (soft_start || !engine_info(spec.engine.kind).resumable)) {
+    throw std::logic_error("run_driven_column: a run of this engine cannot be saved or resumed (EngineInfo::resumable)");
+  }
+  if (resumption.resume_from != nullptr) {
+    const StateArchive& a = *resumption.resume_from;
+    const SavedRunPlace place = saved_run_place(a);
+    in_window = place.in_window;
+    t_reached = in_window ? t0 : place.t;
+    j_done = saved_value<std::int64_t>(a, "samples_done");
+    if (saved_value<std::int64_t>(a, "samples") != n_samples || saved_value<int>(a, "bins") != bins ||
+        !(place.t >= 0.0 && place.t <= (in_window ? t1 : t0)) || j_done < 0 || j_done > n_samples || (j_done > 0 && !in_window)) {
+      throw StateArchiveError("saved state: its place in the run does not fit this run's transient, window and samples");
+    }
+    wall_before = saved_value<double>(a, "wall_seconds");
+    cpu_before = saved_value<double>(a, "cpu_seconds");
+    for (const char* part : {"engine", "floor", "counter", "sampler", "contacts"})
+      if (!a.contains(part)) throw StateArchiveError(fmt::format("saved state: no part '{}'", part));
+    engine->restore(a.at("engine"));
+    floor->restore(a.at("floor"));
+    counter.restore(a.at("counter"));
+    sampler.restore(a.at("sampler"));
+    contacts.restore(a.at("contacts"));
+    if (engine->time() != (in_window ? (j_done > 0 ? std::min(t1, t0 + static_cast<double>(j_done) * dt_s) : t0) : t_reached)) {
+      throw StateArchiveError("saved state: the engine's time is not the run's place");
+    }
+  }
+  auto last_save = wall0;
+  auto save_state = [&] {
+    StateArchive a = StateArchive::object();
+    a["t"] = in_window ? engine->time() : t_reached;
+    a["in_window"] = in_window;
+    a["samples_done"] = j_done;
+    a["samples"] = n_samples;
+    a["bins"] = bins;
+    a["wall_seconds"] = wall_before + seconds_since(wall0);
+    a["cpu_seconds"] = cpu_before + (thread_cpu_seconds() - cpu0);
+    engine->save(a["engine"]);
+    floor->save(a["floor"]);
+    counter.save(a["counter"]);
+    sampler.save(a["sampler"]);
+    contacts.save(a["contacts"]);
+    resumption.save(a);
+    last_save = Clock::now();
+  };
+  auto save_if_due = [&] {
+    if (saving && seconds_since(last_save) >= resumption.every) save_state();
+  };
+
   RunProgress prog;
   prog.t_total = t1;
   auto last_report = wall0;
@@ -90,7 +152,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     prog.in_transient = transient;
     prog.steps = c.steps + before_switch.steps;
     prog.events = c.contact_ends + c.floor_hits + before_switch.contact_ends + before_switch.floor_hits;
-    prog.wall_seconds = seconds_since(wall0);
+    prog.wall_seconds = wall_before + seconds_since(wall0);
     progress(prog);
   };
 
@@ -98,20 +160,30 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   NullEventSink discard;
   EventSink& transient_sink = soft_contacts ? static_cast<EventSink&>(contacts) : discard;
   const double chunk = std::max(dt_s, 1.0);
-  for (double t = 0.0; t < t0;) {
-    t = std::min(t0, t + chunk);
-    engine->advance_to(t, transient_sink);
-    report(t, true);
-  }
-  if (soft_start) {
-    before_switch = engine->counters();
-    engine = make_engine(spec.engine, spec.params, hard_sphere_start(engine->state(), spec.params, *floor), floor.get());
-  }
-  for (std::int64_t j = 1; j <= n_samples; ++j) {
-    const double t = std::min(t1, t0 + static_cast<double>(j) * dt_s);
-    engine->advance_to(t, window);
-    sampler.sample(engine->state());
-    report(t, false);  // a clock read per sample when progress is watched: a cancel is seen within a sample
+  try {
+    for (double t = t_reached; t < t0;) {
+      t = std::min(t0, t + chunk);
+      engine->advance_to(t, transient_sink);
+      t_reached = t;
+      report(t, true);
+      save_if_due();
+    }
+    if (soft_start) {
+      before_switch = engine->counters();
+      engine = make_engine(spec.engine, spec.params, hard_sphere_start(engine->state(), spec.params, *floor), floor.get());
+    }
+    in_window = true;
+    for (std::int64_t j = j_done + 1; j <= n_samples; ++j) {
+      const double t = std::min(t1, t0 + static_cast<double>(j) * dt_s);
+      engine->advance_to(t, window);
+      sampler.sample(engine->state());
+      j_done = j;
+      report(t, false);  // a clock read per sample when progress is watched: a cancel is seen within a sample
+      save_if_due();
+    }
+  } catch (const RunCancelled&) {
+    if (saving) save_state();  // at the last chunk or sample done: the state between two of them
+    throw;
   }
   engine->advance_to(t1, window);  // the window ends at exactly t0 + T
 
@@ -130,8 +202,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   const EngineCounters c = engine->counters();
   r.steps = c.steps + before_switch.steps;
   r.events = c.contact_ends + c.floor_hits + before_switch.contact_ends + before_switch.floor_hits;
-  r.wall_seconds = seconds_since(wall0);
-  r.cpu_seconds = thread_cpu_seconds() - cpu0;
+  r.wall_seconds = wall_before + seconds_since(wall0);
+  r.cpu_seconds = cpu_before + (thread_cpu_seconds() - cpu0);
   // The audit evaluated every overlap, gap and the floor height at random instants between
   // events: a value of the wrong sign means an event was missed, and the run is not a result.
   const AuditCounters audit = engine->audit();

@@ -12,6 +12,7 @@
 #include "model/chain_state.hpp"
 #include "model/floor.hpp"
 #include "model/plate_motion.hpp"
+#include "model/state_archive_fwd.hpp"
 #include "observables/contact_durations.hpp"
 #include "observables/profile_sampler.hpp"
 
@@ -76,6 +77,28 @@ struct RunProgress {
 };
 using ProgressCallback = std::function<void(const RunProgress&)>;
 
+// Saving a run as it goes and resuming it (a checkpoint), for the engines whose registry entry is
+// resumable (EngineInfo::resumable): the engine, the floor's random generator, the observers and
+// the run's place are saved between two samples (in the transient, between two of its chunks of
+// one time unit), and a run resumed from its saved state gives bit for bit the result the
+// uninterrupted run gives. The wall and CPU seconds of a resumed run add those before the save.
+struct RunResumption {
+  // A state saved by `save` for this very spec (the caller checks that it is: config/run_key.hpp);
+  // null: start from t = 0. A state that does not fit the spec throws StateArchiveError.
+  const StateArchive* resume_from = nullptr;
+  // Receives the run's state about every `every` wall seconds, and once more when the run is
+  // cancelled (RunCancelled from the progress callback) before the cancel goes on; empty: never.
+  std::function<void(const StateArchive&)> save;
+  double every = 600.0;
+};
+
+// Where a saved state stands: the simulated time it reached and whether that is in the window.
+struct SavedRunPlace {
+  double t = 0.0;
+  bool in_window = false;
+};
+SavedRunPlace saved_run_place(const StateArchive& state);
+
 // The hard spheres' start from a soft column's state: centres raised from the bottom up until no
 // pair overlaps and particle 1 does not overlap the floor or the plate, velocities kept. The
 // springs' energy is dropped with the overlaps: at large k, the column's weight compresses a
@@ -86,6 +109,6 @@ ChainState hard_sphere_start(ChainState soft, const ChainParameters& p, const Fl
 // Runs the driven column; throws UnphysicalStateError if the dynamics becomes unphysical.
 // progress (if set) is called about every progress_every wall-clock seconds.
 RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progress = {},
-                            double progress_every = 0.5);
+                            double progress_every = 0.5, const RunResumption& resumption = {});
 
 }  // namespace granchain

@@ -1,0 +1,298 @@
+// A run saved part way and resumed (simulation/driven_run.hpp, RunResumption; store/run_checkpoint.hpp)
+// gives bit for bit the result of the run that was never stopped: the engine, the floor's random
+// generator and every observer carry on as if nothing had happened. Stopped in the transient and in
+// the window, once and twice, on the thermal floor and above a vibrating plate, for each resumable
+// engine; the saved state read back through its file; states of another run refused; and the
+// command line: a SIGTERM saves, the same command resumes to the uninterrupted run's numbers.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "cli_fixture.hpp"
+#include "config/run_key.hpp"
+#include "engines/engine_registry.hpp"
+#include "model/state_archive.hpp"
+#include "simulation/cancellation.hpp"
+#include "simulation/driven_run.hpp"
+#include "store/run_checkpoint.hpp"
+#include "store/run_json.hpp"
+
+using namespace granchain;
+
+namespace {
+
+RunSpec column(EngineKind engine, DriveKind drive) {
+  RunSpec s;
+  s.params.N = 6;
+  s.params.e = 0.7;
+  s.params.k = 1e4;
+  s.engine.kind = engine;
+  if (drive != DriveKind::Thermal) s.drive = DriveSpec{drive, 0.1, 5.0};
+  s.T = 40.0;
+  s.transient = 10.0;
+  s.seed = 17;
+  return s;
+}
+
+// Everything a run measured and how much work it did, without its timings.
+std::string physics(const RunResult& r) {
+  nlohmann::json j = run_result_to_json(r);
+  j.erase("cost");
+  j["steps"] = r.steps;
+  j["events"] = r.events;
+  return j.dump();
+}
+
+// Runs spec and stops it (RunCancelled) at the progress report number `stop_at` (reported at every
+// chunk of the transient and every sample), keeping the state saved then; nothing if it finished.
+std::optional<StateArchive> run_until(const RunSpec& spec, int stop_at, const StateArchive* resume_from = nullptr) {
+  std::optional<StateArchive> saved;
+  RunResumption resumption;
+  resumption.resume_from = resume_from;
+  resumption.every = 1e9;  // only the save at the stop
+  resumption.save = [&](const StateArchive& a) { saved = a; };
+  int reports = 0;
+  try {
+    run_driven_column(spec, [&](const RunProgress&) {
+      if (++reports == stop_at) throw RunCancelled{};
+    }, 0.0, resumption);
+  } catch (const RunCancelled&) {
+    return saved;
+  }
+  return std::nullopt;
+}
+
+struct Case {
+  EngineKind engine;
+  DriveKind drive;
+};
+
+class ResumedRun : public ::testing::TestWithParam<Case> {};
+
+}  // namespace
+
+// Stopped at a chunk of the transient (report 4: t = 4 of 10) and at a sample of the window (report
+// 1500: t = 10 + 14.9), each saved state resumed to the end gives the uninterrupted run's result to
+// the last bit; so does a run stopped twice (the second stop in its resumed part).
+TEST_P(ResumedRun, GivesTheUninterruptedRunsResultBitForBit) {
+  const RunSpec spec = column(GetParam().engine, GetParam().drive);
+  const std::string whole = physics(run_driven_column(spec));
+
+  for (int stop_at : {4, 1500}) {
+    SCOPED_TRACE(stop_at);
+    const std::optional<StateArchive> saved = run_until(spec, stop_at);
+    ASSERT_TRUE(saved.has_value()) << "the run was not stopped: the test would show nothing";
+    const SavedRunPlace place = saved_run_place(*saved);
+    EXPECT_GT(place.t, 0.0);
+    EXPECT_LT(place.t, spec.transient + spec.T);
+    EXPECT_EQ(place.in_window, stop_at > 10);
+    RunResumption resumption;
+    resumption.resume_from = &*saved;
+    EXPECT_EQ(physics(run_driven_column(spec, {}, 0.5, resumption)), whole);
+  }
+  // Twice: stopped in the transient, resumed, stopped again in the window (its 1000th report after
+  // the resumption), resumed to the end.
+  const std::optional<StateArchive> first = run_until(spec, 3);
+  ASSERT_TRUE(first.has_value());
+  const std::optional<StateArchive> second = run_until(spec, 1000, &*first);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_GT(saved_run_place(*second).t, saved_run_place(*first).t);
+  RunResumption resumption;
+  resumption.resume_from = &*second;
+  EXPECT_EQ(physics(run_driven_column(spec, {}, 0.5, resumption)), whole);
+}
+
+INSTANTIATE_TEST_SUITE_P(ResumableEngines, ResumedRun,
+                         ::testing::Values(Case{EngineKind::Reference, DriveKind::Thermal},
+                                           Case{EngineKind::ReferenceLocated, DriveKind::Thermal},
+                                           Case{EngineKind::Reference, DriveKind::Sine},
+                                           Case{EngineKind::ReferenceLocated, DriveKind::Sawtooth}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           std::string name = std::string(engine_name(info.param.engine)) + "_" +
+                                              (info.param.drive == DriveKind::Thermal ? "thermal"
+                                               : info.param.drive == DriveKind::Sine  ? "sine"
+                                                                                      : "sawtooth");
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// The resumption depends on the saved state, not only on the spec: a state saved by a run with
+// another seed, resumed under this run's spec, ends elsewhere (the floor's generator and the column
+// come from the state), and saving as it goes (at every sample) leaves the result untouched.
+TEST(RunCheckpoint, TheStateCarriesTheRunAndSavingDoesNotDisturbIt) {
+  const RunSpec spec = column(EngineKind::Reference, DriveKind::Thermal);
+  const std::string whole = physics(run_driven_column(spec));
+  RunSpec other = spec;
+  other.seed = 18;
+  const std::optional<StateArchive> foreign = run_until(other, 1500);
+  ASSERT_TRUE(foreign.has_value());
+  RunResumption from_foreign;
+  from_foreign.resume_from = &*foreign;
+  EXPECT_NE(physics(run_driven_column(spec, {}, 0.5, from_foreign)), whole);
+
+  int saves = 0;
+  RunResumption every_sample;
+  every_sample.every = 0.0;
+  every_sample.save = [&](const StateArchive&) { ++saves; };
+  const RunResult saved_as_it_went = run_driven_column(spec, {}, 0.5, every_sample);
+  EXPECT_EQ(physics(saved_as_it_went), whole);
+  EXPECT_EQ(saves, 10 + saved_as_it_went.samples);  // each of the transient's 10 chunks and every sample
+}
+
+// Through its file: written as CBOR and read back, the state resumes to the same result; the key
+// and the writer come back as written.
+TEST(RunCheckpoint, TheFileKeepsTheStateWhole) {
+  const RunSpec spec = column(EngineKind::Reference, DriveKind::Thermal);
+  const std::optional<StateArchive> saved = run_until(spec, 2000);
+  ASSERT_TRUE(saved.has_value());
+  const fs::path file = fs::temp_directory_path() / ("granchain_checkpoint_" + std::to_string(::getpid()) + ".ckpt");
+  write_run_checkpoint(file.string(), {point_key(spec), "test-writer", *saved});
+  const std::optional<RunCheckpoint> back = read_run_checkpoint(file.string());
+  fs::remove(file);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->key, point_key(spec));
+  EXPECT_EQ(back->written_by, "test-writer");
+  EXPECT_EQ(back->state, *saved);
+  RunResumption resumption;
+  resumption.resume_from = &back->state;
+  EXPECT_EQ(physics(run_driven_column(spec, {}, 0.5, resumption)), physics(run_driven_column(spec)));
+  EXPECT_FALSE(read_run_checkpoint(file.string()).has_value());  // no file: nothing to resume
+}
+
+// A state that does not fit the run is refused, never resumed: another N (the arrays' lengths),
+// another window (its samples), a file that is not a checkpoint; an engine without a saved state
+// cannot be asked for one.
+TEST(RunCheckpoint, AStateThatDoesNotFitIsRefused) {
+  const RunSpec spec = column(EngineKind::Reference, DriveKind::Thermal);
+  const std::optional<StateArchive> saved = run_until(spec, 1500);
+  ASSERT_TRUE(saved.has_value());
+  RunResumption resumption;
+  resumption.resume_from = &*saved;
+  RunSpec more = spec;
+  more.params.N = 7;
+  EXPECT_THROW(run_driven_column(more, {}, 0.5, resumption), StateArchiveError);
+  RunSpec longer = spec;
+  longer.T = 80.0;
+  EXPECT_THROW(run_driven_column(longer, {}, 0.5, resumption), StateArchiveError);
+
+  const fs::path file = fs::temp_directory_path() / ("granchain_not_checkpoint_" + std::to_string(::getpid()));
+  std::ofstream(file) << "{\"format\": \"something else\"}";
+  EXPECT_THROW(read_run_checkpoint(file.string()), CheckpointError);
+  fs::remove(file);
+
+  for (const EngineInfo& e : engines()) {
+    if (e.resumable) continue;
+    SCOPED_TRACE(e.name);
+    RunSpec s = spec;
+    s.engine.kind = e.kind;
+    RunResumption saving;
+    saving.save = [](const StateArchive&) {};
+    EXPECT_THROW(run_driven_column(s, {}, 0.5, saving), std::logic_error);
+  }
+}
+
+// The registry's word and the engines agree: a resumable engine saves and restores, the others
+// refuse to.
+TEST(RunCheckpoint, TheRegistrySaysWhichEnginesCanSave) {
+  const RunSpec spec = column(EngineKind::Reference, DriveKind::Thermal);
+  ChainState s;
+  s.z = {0.5, 1.6, 2.7};
+  s.v = {0.1, -0.2, 0.3};
+  ChainParameters p = spec.params;
+  p.N = 3;
+  Wall wall;
+  for (const EngineInfo& e : engines()) {
+    SCOPED_TRACE(e.name);
+    EngineChoice choice;
+    choice.kind = e.kind;
+    const auto engine = make_engine(choice, p, s, &wall);
+    StateArchive a;
+    if (e.resumable) {
+      EXPECT_NO_THROW(engine->save(a));
+      EXPECT_NO_THROW(engine->restore(a));
+    } else {
+      EXPECT_THROW(engine->save(a), std::logic_error);
+    }
+  }
+}
+
+namespace {
+class RunCheckpointCli : public Cli {};
+// The measured part of a run's JSON (its cost, provenance and code version left out).
+std::string measured(const std::string& json_text) {
+  nlohmann::json j = nlohmann::json::parse(json_text);
+  for (const char* k : {"cost", "provenance", "code_version", "stored"}) j.erase(k);
+  return j.dump();
+}
+}  // namespace
+
+// Bad input: one line naming the parameter and what is valid, exit code 2, nothing written.
+TEST_F(RunCheckpointCli, WhatCannotBeCheckpointedIsRefused) {
+  struct Bad {
+    std::string args, expect;
+  };
+  for (const Bad& b : std::vector<Bad>{
+           {"--engine exact --checkpoint c.ckpt", "--checkpoint = c.ckpt: the exact engine cannot save its state; valid: --engine reference, reference-located"},
+           {"--engine hard --checkpoint c.ckpt", "the hard engine"},
+           {"--checkpoint-every 60", "--checkpoint-every = 60: it acts only with --checkpoint FILE"},
+           {"--engine reference --checkpoint c.ckpt --checkpoint-every 0.5", "1 <= checkpoint-every <= 1e7"},
+       }) {
+    SCOPED_TRACE(b.args);
+    const CliResult r = run("run --N 3 --T 2 --transient 0 -q --db r.db " + b.args);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(b.expect), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(files(), 0u);
+  }
+  // A checkpoint of another run is not resumed under this one.
+  write("c.ckpt", "");
+  fs::remove(dir_ / "c.ckpt");
+  const std::string other = "run --engine reference --N 3 --T 200 --transient 0 --seed 1 --no-db -q --checkpoint c.ckpt";
+  ASSERT_EQ(run(other + " --checkpoint-every 1").exit_code, 0);  // finished: its checkpoint is removed
+  EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
+  const RunSpec three = [] {
+    RunSpec s;
+    s.params.N = 3;
+    s.engine.kind = EngineKind::Reference;
+    s.T = 200;
+    s.transient = 0;
+    s.seed = 1;
+    return s;
+  }();
+  const std::optional<StateArchive> saved = run_until(three, 50);
+  ASSERT_TRUE(saved.has_value());
+  write_run_checkpoint((dir_ / "c.ckpt").string(), {point_key(three), "test", *saved});
+  const CliResult r = run("run --engine reference --N 3 --T 200 --transient 0 --seed 2 --no-db -q --checkpoint c.ckpt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("holds the state of another run"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "c.ckpt"));  // left for the run it belongs to
+}
+
+// SIGTERM (a batch system's end of a job) in the middle of a run with --checkpoint: the run saves
+// its state and ends by the signal, saying where it stopped; the same command resumes it and
+// prints the numbers of the run that was never stopped, and removes the spent checkpoint.
+TEST_F(RunCheckpointCli, SigtermSavesAndTheSameCommandResumesToTheSameNumbers) {
+  const std::string args = "run --engine reference --N 20 --e 0.5 --k 1e7 --T 150 --transient 20 --seed 5 --no-db -q";
+  ASSERT_EQ(run(args + " --json whole.json").exit_code, 0);
+
+  const pid_t pid = start(args + " --json resumed.json --checkpoint c.ckpt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const std::string log = slurp(dir_ / "bg.txt");
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the run ended before the signal: " << log;
+  EXPECT_NE(log.find("interrupted by SIGTERM; the run's state at t = "), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(dir_ / "c.ckpt"));
+  EXPECT_FALSE(fs::exists(dir_ / "resumed.json"));
+
+  const CliResult r = run(args + " --json resumed.json --checkpoint c.ckpt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("resuming from --checkpoint c.ckpt at t = "), std::string::npos) << r.err;
+  EXPECT_EQ(measured(slurp(dir_ / "resumed.json")), measured(slurp(dir_ / "whole.json")));
+  EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
+}
