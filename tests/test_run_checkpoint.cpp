@@ -296,3 +296,26 @@ TEST_F(RunCheckpointCli, SigtermSavesAndTheSameCommandResumesToTheSameNumbers) {
   EXPECT_EQ(measured(slurp(dir_ / "resumed.json")), measured(slurp(dir_ / "whole.json")));
   EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
 }
+
+// A run stored already is read back, not run again; a checkpoint of it left behind (its process
+// stopped between storing and removing it) is spent and is removed, saying so.
+TEST_F(RunCheckpointCli, ASpentCheckpointOfAStoredRunIsRemoved) {
+  const std::string args = "run --engine reference --N 3 --T 200 --transient 0 --seed 1 --db r.db -q --checkpoint c.ckpt";
+  ASSERT_EQ(run(args).exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
+  RunSpec three;
+  three.params.N = 3;
+  three.engine.kind = EngineKind::Reference;
+  three.T = 200;
+  three.transient = 0;
+  three.seed = 1;
+  const std::optional<StateArchive> saved = run_until(three, 50);
+  ASSERT_TRUE(saved.has_value());
+  write_run_checkpoint((dir_ / "c.ckpt").string(), {point_key(three), "test", *saved});
+  const CliResult r = run(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("is this run already"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("held the state of this stored run; it was removed"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
+  EXPECT_EQ(query(dir_ / "r.db", "SELECT count(*) FROM runs"), 1);
+}

@@ -181,7 +181,19 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       fmt::print(stderr, "granchain: error: {}; nothing was run or written\n", e.what());
       return kExitStoreFailed;
     }
-    if (stored_run) return report_stored_run(impl, opts, *stored_run, json_stdout);
+    if (stored_run) {
+      // A checkpoint of this run left by a process that stored it and was stopped before removing it is spent.
+      if (!opts.checkpoint_path.empty()) {
+        try {
+          const std::optional<RunCheckpoint> left = read_run_checkpoint(opts.checkpoint_path);
+          if (left && left->key == point_key(opts.spec) && std::filesystem::remove(opts.checkpoint_path)) {
+            fmt::print(stderr, "granchain: --checkpoint {} held the state of this stored run; it was removed\n", opts.checkpoint_path);
+          }
+        } catch (const std::exception&) {  // not a checkpoint of this run: left as it is
+        }
+      }
+      return report_stored_run(impl, opts, *stored_run, json_stdout);
+    }
   }
 
   // A checkpoint of this very run (its key: every parameter and the seed) is resumed; one of
