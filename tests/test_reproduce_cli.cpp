@@ -278,9 +278,16 @@ TEST_F(ReproduceCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
   EXPECT_NE(r.out.find("granchain sweep --N 100 --e 0.9,0.92,0.93,0.94,0.95,0.96,"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 200 --e 0.95,0.96,0.965,0.97,0.975,"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 150 --e 0.1,0.2,0.3,0.4 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4"), std::string::npos) << r.out;
+  // The power-law side of N >= 500 on the paper's integrator, where it is the cheaper engine; N = 300's on the exact one.
+  EXPECT_NE(r.out.find("granchain sweep --N 500 --e 0.1,0.2,0.3,0.4 --engine reference --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 1000 --e 0.1,0.2,0.3,0.4 --engine reference --k 1e5:1e10:x10 --T 1e3 --transient 500"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("granchain sweep --N 300 --e 0.966666666667,"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("--N 300 --e 0.1,0.2,0.3,0.4 --engine"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("granchain sweep --N 20 --e"), std::string::npos) << r.out;  // the paper's columns stay
   EXPECT_NE(r.out.find("2424 distinct points"), std::string::npos) << r.out;
-  // N = 1000 settles after a longer transient than T/10 (its two sweeps), every other column not.
+  // N = 1000 settles after a longer transient than T/10 (its three sweeps), every other column not.
   std::size_t longer = 0;
   for (std::size_t at = r.out.find("--transient"); at != std::string::npos; at = r.out.find("--transient", at + 1)) {
     ++longer;
@@ -288,7 +295,7 @@ TEST_F(ReproduceCli, LargePresetExtendsTheAcrossNSweepWithReplicas) {
     EXPECT_EQ(r.out.compare(line, 26, "granchain sweep --N 1000 -"), 0) << r.out.substr(line, at - line);
     EXPECT_EQ(r.out.compare(at, 16, "--transient 500 "), 0);
   }
-  EXPECT_EQ(longer, 2u) << r.out;
+  EXPECT_EQ(longer, 3u) << r.out;
   // The contacts grid too: N = 1000's points after 500, the others after T/10.
   const CliResult contacts = run("reproduce --figure contacts --preset large --print-sweeps --db l.db");
   ASSERT_EQ(contacts.exit_code, 0) << contacts.err;

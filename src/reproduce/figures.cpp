@@ -256,10 +256,10 @@ std::vector<std::string> run_missing_points(const std::vector<SweepPoint>& point
   return failures;
 }
 
-StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min) {
+StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min, const EnginePool& pool) {
   ExportSelection sel;
   for (const SweepPoint& p : points) sel.point_keys.push_back(p.key);
-  return analyze_store(db, sel, k_min);
+  return analyze_store(db, sel, k_min, pool);
 }
 
 std::string output_path(const ReproduceFlags& o, const std::string& name) {

@@ -131,7 +131,7 @@ std::vector<CollapseSpec> count_specs(const std::vector<CountSeries>& series, co
 CollapseResult stored_or_run_collapse(const CollapseSpec& spec, const ReproduceFlags& o, const std::string& label);
 
 // The analysis (`granchain analyze`) of exactly these points as stored, fits over k >= k_min.
-StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min);
+StoreAnalysis analyze_points(const std::string& db, const std::vector<SweepPoint>& points, double k_min, const EnginePool& pool = {});
 
 // The path of an output named `name` in --out.
 std::string output_path(const ReproduceFlags& o, const std::string& name);
