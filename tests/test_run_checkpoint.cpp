@@ -222,6 +222,16 @@ TEST(RunCheckpoint, TheRegistrySaysWhichEnginesCanSave) {
 
 namespace {
 class RunCheckpointCli : public Cli {};
+// The run of `run --engine reference --N 3 --T 200 --transient 0 --seed 1`.
+RunSpec three_particles() {
+  RunSpec s;
+  s.params.N = 3;
+  s.engine.kind = EngineKind::Reference;
+  s.T = 200;
+  s.transient = 0;
+  s.seed = 1;
+  return s;
+}
 // The measured part of a run's JSON (its cost, provenance and code version left out).
 std::string measured(const std::string& json_text) {
   nlohmann::json j = nlohmann::json::parse(json_text);
@@ -249,20 +259,10 @@ TEST_F(RunCheckpointCli, WhatCannotBeCheckpointedIsRefused) {
     EXPECT_EQ(files(), 0u);
   }
   // A checkpoint of another run is not resumed under this one.
-  write("c.ckpt", "");
-  fs::remove(dir_ / "c.ckpt");
   const std::string other = "run --engine reference --N 3 --T 200 --transient 0 --seed 1 --no-db -q --checkpoint c.ckpt";
   ASSERT_EQ(run(other + " --checkpoint-every 1").exit_code, 0);  // finished: its checkpoint is removed
   EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
-  const RunSpec three = [] {
-    RunSpec s;
-    s.params.N = 3;
-    s.engine.kind = EngineKind::Reference;
-    s.T = 200;
-    s.transient = 0;
-    s.seed = 1;
-    return s;
-  }();
+  const RunSpec three = three_particles();
   const std::optional<StateArchive> saved = run_until(three, 50);
   ASSERT_TRUE(saved.has_value());
   write_run_checkpoint((dir_ / "c.ckpt").string(), {point_key(three), "test", *saved});
@@ -303,12 +303,7 @@ TEST_F(RunCheckpointCli, ASpentCheckpointOfAStoredRunIsRemoved) {
   const std::string args = "run --engine reference --N 3 --T 200 --transient 0 --seed 1 --db r.db -q --checkpoint c.ckpt";
   ASSERT_EQ(run(args).exit_code, 0);
   EXPECT_FALSE(fs::exists(dir_ / "c.ckpt"));
-  RunSpec three;
-  three.params.N = 3;
-  three.engine.kind = EngineKind::Reference;
-  three.T = 200;
-  three.transient = 0;
-  three.seed = 1;
+  const RunSpec three = three_particles();
   const std::optional<StateArchive> saved = run_until(three, 50);
   ASSERT_TRUE(saved.has_value());
   write_run_checkpoint((dir_ / "c.ckpt").string(), {point_key(three), "test", *saved});
