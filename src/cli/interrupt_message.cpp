@@ -33,6 +33,16 @@ void on_signal(int sig) {
 volatile sig_atomic_t recorded = 0;
 void record_signal(int sig) { recorded = sig; }
 
+// SIGINT and SIGTERM to `handler`, with sigaction flags (SA_RESETHAND: once).
+void install(void (*handler)(int), int flags) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = flags;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
 template <std::size_t Size>
 std::size_t store(std::array<char, Size>& buffer, const std::string& text) {
   const std::size_t len = std::min(text.size(), buffer.size() - 1);
@@ -60,22 +70,11 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
   }
   sigint_length = store(sigint_message, fmt::format("\ngranchain: interrupted by SIGINT; {}\n", what_was_kept));
   sigterm_length = store(sigterm_message, fmt::format("\ngranchain: interrupted by SIGTERM; {}\n", what_was_kept));
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  install(on_signal, SA_RESETHAND);
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
-void record_interrupts() {
-  struct sigaction sa {};
-  sa.sa_handler = record_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
+void record_interrupts() { install(record_signal, 0); }
 
 int recorded_interrupt() { return recorded; }
 

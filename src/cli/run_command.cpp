@@ -136,6 +136,37 @@ int report_stored_run(const RunFlags& impl, const RunOptions& opts, const Result
   return kExitOk;
 }
 
+// The checkpoint to resume this run from (key: its point key), nothing when there is none; says
+// that it resumes, and from which build. Throws CheckpointError for a checkpoint of another run
+// (so that no state goes on under another run's name), StateArchiveError for one without its place.
+std::optional<RunCheckpoint> checkpoint_to_resume(const RunOptions& opts, const std::string& key) {
+  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(opts.checkpoint_path);
+  if (!checkpoint) return checkpoint;
+  if (checkpoint->key != key) {
+    throw CheckpointError(fmt::format("'{}' holds the state of another run ({}); give another file, or delete it to start this run anew",
+                                      opts.checkpoint_path, checkpoint->key));
+  }
+  const SavedRunPlace place = saved_run_place(checkpoint->state);
+  fmt::print(stderr, "granchain: resuming from --checkpoint {} at t = {:.6g} of {:.6g} ({}; saved by granchain {}{})\n",
+             opts.checkpoint_path, place.t, opts.spec.transient + opts.spec.T, place.in_window ? "measuring" : "transient",
+             checkpoint->written_by,
+             checkpoint->written_by == code_version()
+                 ? ""
+                 : fmt::format(", this is {}: bit for bit the same result only if the engine and observers are unchanged", code_version()));
+  return checkpoint;
+}
+
+// A checkpoint of a run found stored already (its process stored it and was stopped before removing
+// the checkpoint) is spent: removed, saying so. Anything else at that path is left as it is.
+void remove_spent_checkpoint(const RunOptions& opts, const std::string& key) {
+  try {
+    const std::optional<RunCheckpoint> left = read_run_checkpoint(opts.checkpoint_path);
+    if (left && left->key == key && std::filesystem::remove(opts.checkpoint_path))
+      fmt::print(stderr, "granchain: --checkpoint {} held the state of this stored run; it was removed\n", opts.checkpoint_path);
+  } catch (const std::exception&) {  // not a checkpoint of this run
+  }
+}
+
 int execute_run(const std::shared_ptr<RunFlags>& impl_) {
   announce_on_interrupt("nothing was run, stored or written");  // also while waiting for a busy store
   auto& impl = *impl_;
@@ -182,42 +213,17 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       return kExitStoreFailed;
     }
     if (stored_run) {
-      // A checkpoint of this run left by a process that stored it and was stopped before removing it is spent.
-      if (!opts.checkpoint_path.empty()) {
-        try {
-          const std::optional<RunCheckpoint> left = read_run_checkpoint(opts.checkpoint_path);
-          if (left && left->key == point_key(opts.spec) && std::filesystem::remove(opts.checkpoint_path)) {
-            fmt::print(stderr, "granchain: --checkpoint {} held the state of this stored run; it was removed\n", opts.checkpoint_path);
-          }
-        } catch (const std::exception&) {  // not a checkpoint of this run: left as it is
-        }
-      }
+      if (!opts.checkpoint_path.empty()) remove_spent_checkpoint(opts, point_key(opts.spec));
       return report_stored_run(impl, opts, *stored_run, json_stdout);
     }
   }
 
-  // A checkpoint of this very run (its key: every parameter and the seed) is resumed; one of
-  // another run is refused, so that no state goes on under another run's name.
   const bool checkpointing = !opts.checkpoint_path.empty();
+  const std::string key = checkpointing ? point_key(opts.spec) : "";
   std::optional<RunCheckpoint> checkpoint;
   if (checkpointing) {
     try {
-      checkpoint = read_run_checkpoint(opts.checkpoint_path);
-      if (checkpoint && checkpoint->key != point_key(opts.spec)) {
-        throw CheckpointError(fmt::format("'{}' holds the state of another run ({}); give another file, or delete it to start "
-                                          "this run anew",
-                                          opts.checkpoint_path, checkpoint->key));
-      }
-      if (checkpoint) {
-        const SavedRunPlace place = saved_run_place(checkpoint->state);
-        fmt::print(stderr, "granchain: resuming from --checkpoint {} at t = {:.6g} of {:.6g} ({}; saved by granchain {}{})\n",
-                   opts.checkpoint_path, place.t, opts.spec.transient + opts.spec.T, place.in_window ? "measuring" : "transient",
-                   checkpoint->written_by,
-                   checkpoint->written_by == code_version()
-                       ? ""
-                       : fmt::format(", this is {}: bit for bit the same result only if the engine and observers are unchanged",
-                                     code_version()));
-      }
+      checkpoint = checkpoint_to_resume(opts, key);
     } catch (const std::exception& e) {  // CheckpointError, StateArchiveError
       fmt::print(stderr, "granchain: error: --checkpoint: {}; nothing was run or written\n", e.what());
       return kExitBadInput;
@@ -248,8 +254,7 @@ int execute_run(const std::shared_ptr<RunFlags>& impl_) {
       };
       resumption.resume_from = checkpoint ? &checkpoint->state : nullptr;
       resumption.every = opts.checkpoint_every;
-      const std::string key = point_key(opts.spec);
-      resumption.save = [&, key](const StateArchive& state) {
+      resumption.save = [&](const StateArchive& state) {
         write_run_checkpoint(opts.checkpoint_path, {key, code_version(), state});
         saved = saved_run_place(state);
         any_saved = true;

@@ -84,6 +84,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   EventFanOut window(soft_contacts ? EventFanOut{&counter, &contacts} : EventFanOut{&counter});
 
   EngineCounters before_switch{};  // the soft engine's counts, for a soft start's totals
+  // Sample j's time (j = 0: the window's start); the last ends exactly at t1.
+  const auto sample_time = [&](std::int64_t j) { return j > 0 ? std::min(t1, t0 + static_cast<double>(j) * dt_s) : t0; };
 
   // Where the run stands: the transient done up to t_reached, then the window's samples 1 .. j_done.
   double t_reached = 0.0;
@@ -113,7 +115,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     counter.restore(a.at("counter"));
     sampler.restore(a.at("sampler"));
     contacts.restore(a.at("contacts"));
-    if (engine->time() != (in_window ? (j_done > 0 ? std::min(t1, t0 + static_cast<double>(j_done) * dt_s) : t0) : t_reached)) {
+    if (engine->time() != (in_window ? sample_time(j_done) : t_reached)) {
       throw StateArchiveError("saved state: the engine's time is not the run's place");
     }
   }
@@ -174,7 +176,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     }
     in_window = true;
     for (std::int64_t j = j_done + 1; j <= n_samples; ++j) {
-      const double t = std::min(t1, t0 + static_cast<double>(j) * dt_s);
+      const double t = sample_time(j);
       engine->advance_to(t, window);
       sampler.sample(engine->state());
       j_done = j;
