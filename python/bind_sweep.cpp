@@ -70,6 +70,9 @@ SweepRequest sweep_request_checked(const py::kwargs& kwargs) {
   if (const auto r = integer("replicas", 1, 1000000)) q.def.replicas = static_cast<int>(*r);
   if (const auto t = integer("threads", 1, 1024)) q.threads = static_cast<int>(*t);
   if (const auto s = integer("seed", 0, 9223372036854775807LL)) q.def.base_seed = static_cast<std::uint64_t>(*s);
+  if (args.count("checkpoint-every"))
+    throw InputError("checkpoint_every: the Python sweep keeps no checkpoints (each point stored is kept); valid: `granchain sweep "
+                     "--checkpoint-dir DIR --checkpoint-every S` on the command line");
   for (const auto& [name, value] : args) {
     const Parameter* p = find_parameter(run_parameters(), name);
     if (p == nullptr || !(p->uses & kUseSweep))

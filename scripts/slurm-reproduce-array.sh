@@ -13,9 +13,12 @@
 # FIGURE and PRESET (environment, default fig6 and large) choose the runs: task i runs share i/SHARDS
 # of each sweep that `granchain reproduce --figure FIGURE --preset PRESET --print-sweeps` lists, in
 # that order, into shards/FIGURE-PRESET-i.db, each sweep with the part of the job's walltime still left
-# (--time-limit: a point starts only if it is predicted to end within it). A sweep that leaves points
+# (--time-limit: a point starts only if it is predicted to end within it). Points of an engine that
+# can save its state (the reference engine's) keep it in shards/states-FIGURE-PRESET-i
+# (--checkpoint-dir): they start while time is left, are saved 5 minutes before the limit and go on
+# in the resubmitted task. A sweep that leaves points
 # does not stop the task: later sweeps may hold points that still fit. A sweep whose longest point
-# (its cost-model estimate with the sweep's margin of 1.25, from a dry run of the task's share)
+# that keeps no state (its cost-model estimate with the sweep's margin of 1.25, from a dry run of the task's share)
 # does not fit in what is left of the walltime waits for the resubmitted task, which starts with all
 # of it; one that does not fit in the whole walltime is an error (exit 2: give the job a longer
 # --time and WALLTIME_S). The task exits with the first failure's code (2, 3: a run turned
@@ -31,8 +34,8 @@
 set -euo pipefail
 SHARDS=64
 # The job's --time less half an hour for the store and the log (change both together). Three days:
-# the large preset's longest points (N = 1000 at e = 0.1 ... 0.4, k = 1e10) are predicted at 44 hours
-# each, 55 with the sweep's margin of 1.25.
+# the large preset's longest point that keeps no state (N = 1000, e = 0.99, k = 1e10, exact engine)
+# is predicted at 11.5 hours, and the cost model has missed by up to 4.7 times at N = 1000.
 WALLTIME_S=$((72 * 3600 - 1800))
 GRANCHAIN=${GRANCHAIN:-./build/granchain}
 FIGURE=${FIGURE:-fig6}
@@ -59,10 +62,14 @@ while read -r line; do
   fi
   read -ra words <<< "${line#granchain }"
   store="shards/$FIGURE-$PRESET-$i.db"
-  # The longest point of this share (stored or not: the sweep's own check counts them all), with
-  # the sweep's margin: a sweep refuses a time limit that it cannot hold.
-  need=$("$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" --dry-run |
-    awk '/driven_column/ { v = $2 + 0; if (v > m) m = v } END { printf "%d", 1.25 * m + 1 }')
+  # Points of an engine that can save its state keep it in the task's folder of states, so that one
+  # of them may run over several jobs; a sweep without such points refuses the folder (exit 2).
+  states=(--checkpoint-dir "shards/states-$FIGURE-$PRESET-$i")
+  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" "${states[@]}" --dry-run > /dev/null 2>&1 || states=()
+  # The longest point of this share that keeps no state (stored or not: the sweep's own check
+  # counts them all), with the sweep's margin: a sweep refuses a time limit that it cannot hold.
+  need=$("$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" "${states[@]}" --dry-run |
+    awk '/driven_column/ && !/\(checkpointed/ { v = $2 + 0; if (v > m) m = v } END { printf "%d", 1.25 * m + 1 }')
   if [ "$need" -gt "$WALLTIME_S" ]; then
     echo "slurm-reproduce-array: ${line}: its longest point needs ${need} s, more than the job's ${WALLTIME_S} s" >&2
     [ "$status" -eq 0 ] && status=2
@@ -73,7 +80,7 @@ while read -r line; do
     continue
   fi
   rc=0
-  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "$store" \
+  "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --threads "${SLURM_CPUS_PER_TASK:-1}" --db "$store" "${states[@]}" \
       --time-limit "${remaining}s" --progress -q || rc=$?
   if [ "$rc" -eq 75 ]; then
     left=1

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
+#include <vector>
 #include <fstream>
 #include <sstream>
 #include <cstdint>
@@ -26,6 +28,31 @@ inline std::int64_t query(const fs::path& db_path, const std::string& sql) {
   }
   sqlite3_close(db);
   return n;
+}
+
+// Physics columns of every stored run, by point key, from `granchain export` CSV.
+inline std::map<std::string, std::string> physics_by_key(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  {
+    std::istringstream h(line);
+    for (std::string c; std::getline(h, c, ',');) header.push_back(c);
+  }
+  const std::vector<std::string> wanted = {"seed",      "n_coll",  "n_coll_err",          "n_coll_blocks", "floor_rate",
+                                           "pp_rate",   "samples", "particle_collisions", "floor_hits",    "events"};
+  std::map<std::string, std::string> out;
+  while (std::getline(in, line)) {
+    std::istringstream r(line);
+    std::map<std::string, std::string> row;
+    std::size_t i = 0;
+    for (std::string c; std::getline(r, c, ',');) row[header.at(i++)] = c;
+    std::string physics;
+    for (const auto& w : wanted) physics += w + "=" + row.at(w) + " ";
+    EXPECT_TRUE(out.emplace(row.at("point_key"), physics).second) << "point stored twice: " << row.at("point_key");
+  }
+  return out;
 }
 
 struct CliResult {

@@ -21,31 +21,6 @@
 
 namespace {
 
-// Physics columns of every stored run, by point key, from `granchain export` CSV.
-std::map<std::string, std::string> physics_by_key(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  {
-    std::istringstream h(line);
-    for (std::string c; std::getline(h, c, ',');) header.push_back(c);
-  }
-  const std::vector<std::string> wanted = {"seed",      "n_coll",  "n_coll_err",          "n_coll_blocks", "floor_rate",
-                                           "pp_rate",   "samples", "particle_collisions", "floor_hits",    "events"};
-  std::map<std::string, std::string> out;
-  while (std::getline(in, line)) {
-    std::istringstream r(line);
-    std::map<std::string, std::string> row;
-    std::size_t i = 0;
-    for (std::string c; std::getline(r, c, ',');) row[header.at(i++)] = c;
-    std::string physics;
-    for (const auto& w : wanted) physics += w + "=" + row.at(w) + " ";
-    EXPECT_TRUE(out.emplace(row.at("point_key"), physics).second) << "point stored twice: " << row.at("point_key");
-  }
-  return out;
-}
-
 // Profile rows of `granchain export --table profiles` without their store-specific run id, sorted.
 std::vector<std::string> profile_rows(const std::string& csv) {
   std::istringstream in(csv);

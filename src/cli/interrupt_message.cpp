@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cstdlib>
 #include <cstring>
@@ -31,7 +32,12 @@ void on_signal(int sig) {
 }
 
 volatile sig_atomic_t recorded = 0;
-void record_signal(int sig) { recorded = sig; }
+std::atomic<CancelFlag*> also_cancel{nullptr};
+static_assert(CancelFlag::is_always_lock_free && std::atomic<CancelFlag*>::is_always_lock_free);
+void record_signal(int sig) {
+  recorded = sig;
+  if (CancelFlag* flag = also_cancel.load()) flag->store(true);  // lock-free: safe in a handler
+}
 
 // SIGINT and SIGTERM to `handler`, with sigaction flags (SA_RESETHAND: once).
 void install(void (*handler)(int), int flags) {
@@ -74,7 +80,10 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
-void record_interrupts() { install(record_signal, 0); }
+void record_interrupts(CancelFlag* also_set) {
+  also_cancel.store(also_set);
+  install(record_signal, 0);
+}
 
 int recorded_interrupt() { return recorded; }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "simulation/cancellation.hpp"
+
 namespace granchain {
 
 // Installs handlers for SIGINT and SIGTERM that print
@@ -18,8 +20,9 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
 // For a run that saves its state before it stops (run --checkpoint): SIGINT and SIGTERM are only
 // recorded, recorded_interrupt() returns the signal (0 before any), and the caller stops at its
 // next sample, saves, says so and ends by the signal with reraise_interrupt. A call of
-// announce_on_interrupt puts the handlers back.
-void record_interrupts();
+// announce_on_interrupt puts the handlers back. `also_set` (if given) is set too, for work that
+// watches a CancelFlag (a sweep's points).
+void record_interrupts(CancelFlag* also_set = nullptr);
 int recorded_interrupt();
 [[noreturn]] void reraise_interrupt(int sig);
 // "SIGINT" or "SIGTERM".

@@ -23,6 +23,7 @@
 #include "store/output_file.hpp"
 #include "store/results_store.hpp"
 #include "sweep/mpi_sweep.hpp"
+#include "sweep/sweep_checkpoints.hpp"
 #include "sweep/sweep_grid.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -34,7 +35,7 @@ struct SweepFlags {
   std::map<std::string, std::string> flag_values;
   std::map<std::string, CLI::Option*> flag_options;
   std::string sweep_path;
-  std::string replicas, threads, shard, time_limit;
+  std::string replicas, threads, shard, time_limit, checkpoint_dir;
   double progress_every = 0;
   bool dry_run = false, quiet = false, progress_lines = false;
 };
@@ -124,7 +125,14 @@ Subcommand add_sweep_command(CLI::App& app) {
                    "within it, leave the rest for a repeat of the command, and exit 75; points whose estimate alone exceeds "
                    "it are refused (exit 2); seconds, 90m, 2.5h or [D-]H:MM:SS")
       ->type_name("DURATION");
-  sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost) and what the store already holds; run nothing");
+  sub_->add_option("--checkpoint-dir", impl.checkpoint_dir,
+                   "keep the state of every running point of a resumable engine (" + resumable_engine_list() +
+                       ") in this folder, saved every checkpoint-every seconds and when SIGINT, SIGTERM or the end of "
+                       "--time-limit stops the sweep; a repeat of the command resumes those points where they stopped "
+                       "(bit for bit), so one point may run longer than a job")
+      ->type_name("DIR");
+  sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost), what the store already holds and, with "
+                 "--checkpoint-dir, which points keep their state there; run nothing");
   sub_->add_flag("--quiet,-q", impl.quiet, "print no table of results, no summary, and no progress unless --progress is given");
   sub_->add_flag("--progress", impl.progress_lines, "print progress on standard error even with --quiet");
   sub_->add_option("--progress-every", impl.progress_every,
@@ -148,6 +156,8 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   std::string db_path = "granchain.db";
   int threads = 0, shard_i = 1, shard_n = 1;
   double time_limit = 0;  // seconds; 0: none
+  std::optional<RawValue> checkpoint_every;  // as given
+  std::unique_ptr<SweepCheckpoints> checkpoints;
   std::vector<SweepPoint> points;
   try {
     if (launched_by_mpi_launcher() && !built_with_mpi())
@@ -173,6 +183,8 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       if (auto v = take(name, impl.flag_values[name], opt->count() > 0)) {
         if (name == "seed") {
           def.base_seed = static_cast<std::uint64_t>(integer_in("--seed", as_text(*v), 0, 9223372036854775807LL));
+        } else if (name == "checkpoint-every") {
+          checkpoint_every = *v;
         } else if (name == "db") {
           db_path = as_text(*v);
           if (db_path.empty()) throw InputError("--db: the path is empty; give a file name");
@@ -193,12 +205,29 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                                    impl.progress_every));
     points = build_sweep_points(def);
     if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
+    if (given("--checkpoint-dir")) {
+      if (impl.checkpoint_dir.empty()) throw InputError("--checkpoint-dir: the path is empty; give a folder name");
+      if (std::none_of(points.begin(), points.end(), [](const SweepPoint& p) { return SweepCheckpoints::covers(p); }))
+        throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep has an engine that can save its state; valid: "
+                                     "with --engine {}",
+                                     impl.checkpoint_dir, resumable_engine_list()));
+      const double every = checkpoint_every ? read_real(*find_parameter(run_parameters(), "checkpoint-every"), *checkpoint_every)
+                                            : RunOptions{}.checkpoint_every;
+      checkpoints = std::make_unique<SweepCheckpoints>(impl.checkpoint_dir, every);
+      checkpoints->announce_resumes(!impl.quiet || impl.progress_lines);
+    } else if (checkpoint_every) {
+      throw InputError(fmt::format("--checkpoint-every = {}{}: it acts only with --checkpoint-dir DIR", checkpoint_every->text(),
+                                   from_where(*checkpoint_every)));
+    }
     if (!impl.sweep_path.empty()) check_output_file(db_path, "--db", {{"--sweep", impl.sweep_path}});
     // A dry run only reads the store, if there is one.
     if (rank0 && !impl.dry_run) ResultsStore::preflight(db_path);
     if (rank0 && impl.dry_run && access(db_path.c_str(), F_OK) == 0) ResultsStore::preflight(db_path, ResultsStore::Access::ReadOnly);
+    if (rank0 && !impl.dry_run && checkpoints) checkpoints->create_folder();
   } catch (const InputError& e) {
     return fail(e.what(), kExitBadInput);
+  } catch (const OutputError& e) {
+    return world.broadcast(fail(e.what(), kExitBadInput));
   } catch (const StoreError& e) {
     return world.broadcast(fail(e.what(), kExitBadInput));
   }
@@ -239,7 +268,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
             ResultsStore reader(db_path, ResultsStore::Access::ReadOnly);
             settled(reader);
           }
-          const std::vector<std::size_t> longer = points_longer_than(points, points_to_run(points, done), time_limit);
+          const std::vector<std::size_t> longer = points_longer_than(points, points_to_run(points, done), time_limit, checkpoints.get());
           if (!longer.empty()) code = fail(time_limit_too_short_message(points, longer, time_limit), kExitBadInput);
         }
         if (code == kExitOk) {
@@ -268,12 +297,28 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
       for (std::size_t i : todo) to_run[i] = true;
       for (std::size_t i = 0; i < points.size(); ++i)
         fmt::print("{:6d}  {:10.3g}  {:7d}  {}  {}{}\n", i + 1, points[i].cost, points[i].replica, points[i].spec.seed,
-                   points[i].key, to_run[i] ? "" : collapsed.count(points[i].key) ? "  (stored: collapsed)" : "  (stored)");
+                   points[i].key,
+                   !to_run[i] ? std::string(collapsed.count(points[i].key) ? "  (stored: collapsed)" : "  (stored)")
+                   : !checkpoints || !SweepCheckpoints::covers(points[i]) ? std::string()
+                   : checkpoints->has_saved(points[i]) ? fmt::format("  (checkpointed, saved part-way: {})", checkpoints->path(points[i]))
+                                                       : std::string("  (checkpointed)"));
     }
     return kExitOk;
   }
 
-  announce_on_interrupt(fmt::format("every point that finished is stored in {}; repeat the same command to run the rest", db_path));
+  // With checkpoints a signal is recorded: the running points save their states and stop, then
+  // the sweep says so and ends by the signal. Without, it ends at once.
+  static CancelFlag interrupted{false};
+  if (checkpoints) record_interrupts(&interrupted);
+  else announce_on_interrupt(fmt::format("every point that finished is stored in {}; repeat the same command to run the rest", db_path));
+  if (rank0 && checkpoints) {  // states of points stored already (stopped between storing and removing them) are spent
+    std::vector<bool> to_run(points.size(), false);
+    for (std::size_t i : todo) to_run[i] = true;
+    std::size_t spent = 0;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!to_run[i] && checkpoints->has_saved(points[i])) spent += checkpoints->remove(points[i]) ? 1 : 0;
+    if (spent > 0) fmt::print(stderr, "sweep: removed {} saved state{} of points stored already from {}\n", spent, spent == 1 ? "" : "s", checkpoints->dir());
+  }
   const bool tty = isatty(STDERR_FILENO) != 0;
   // On a terminal one line rewritten in place; otherwise (a batch job's log) a line every 10 s.
   const bool show_progress = rank0 && (impl.progress_lines || !impl.quiet);
@@ -301,14 +346,33 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                  threads == 1 ? "" : "s", world.size() > 1 ? fmt::format(" + {} MPI ranks", world.size() - 1) : "");
     runner = std::make_unique<SweepRunner>(points, todo, sink);
     if (time_limit > 0) runner->set_time_limit(time_limit);
+    if (checkpoints) {
+      runner->set_checkpoints(checkpoints.get());
+      runner->watch(&interrupted);
+    }
   }
   try {
     SweepProgressCallback cb;
     if (show_progress) cb = [&printer](const SweepProgress& p) { printer(p); };
-    run_sweep_over_ranks(world, points, runner.get(), threads, cb, every);
+    PointStops rank_stops;  // on ranks other than 0 (rank 0's runner keeps its own)
+    rank_stops.cancel = &interrupted;
+    if (checkpoints && time_limit > 0) rank_stops.suspend_at = steady_clock_seconds() + checkpoint_deadline(time_limit);
+    run_sweep_over_ranks(world, points, runner.get(), threads, cb, every, checkpoints.get(), rank_stops);
   } catch (const StoreError& e) {
     code = fail(fmt::format("{}; the sweep stopped, every point stored so far is complete (repeat the command to resume)", e.what()),
                 kExitStoreFailed);
+  } catch (const OutputError& e) {  // a point's state could not be saved
+    code = fail(fmt::format("{}; the sweep stopped, every point stored so far is complete and the states saved before are kept in {} "
+                            "(repeat the command to resume)",
+                            e.what(), checkpoints ? checkpoints->dir() : std::string()),
+                kExitStoreFailed);
+  }
+  if (const int sig = checkpoints ? recorded_interrupt() : 0; sig != 0) {
+    if (rank0)
+      fmt::print(stderr, "\ngranchain: interrupted by {}; every point that finished is stored in {}, the states of {} running point{} are "
+                         "saved in {}; repeat the same command to go on\n",
+                 interrupt_name(sig), db_path, runner->saved(), runner->saved() == 1 ? "" : "s", checkpoints->dir());
+    reraise_interrupt(sig);
   }
   if (!rank0) return world.broadcast(code);
 
@@ -356,9 +420,10 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                      ? fmt::format(", {} collapsed ({} now)", collapsed_now.size() + collapsed_before, collapsed_now.size())
                      : "",
                  failures.size(), db_path);
-    if (const std::size_t left = runner->not_started(); left > 0) {
-      fmt::print(stderr, "sweep: --time-limit: {} points not started (estimated {} of one core); repeat the command to run them\n",
-                 left, format_duration(runner->not_started_cost()));
+    if (const std::size_t left = runner->not_started(), saved = runner->saved(); left > 0 || saved > 0) {
+      fmt::print(stderr, "sweep: --time-limit: {} points not started (estimated {} of one core){}; repeat the command to run them\n",
+                 left, format_duration(runner->not_started_cost()),
+                 saved > 0 ? fmt::format(", {} stopped part-way with their states saved in {}", saved, checkpoints->dir()) : "");
       if (code == kExitOk) code = kExitTimeLimit;
     }
   }

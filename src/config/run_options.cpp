@@ -159,8 +159,9 @@ const std::vector<Definition>& definitions() {
                    if (path.empty()) throw InputError("--checkpoint: the path is empty; give a file name");
                    o.checkpoint_path = path;
                  }});
-    d.push_back({{"checkpoint-every", ParameterType::Real, "", "wall-clock seconds between two saves of --checkpoint",
-                  "1 <= checkpoint-every <= 1e7", shown(def.checkpoint_every), kUseRun, EngineScope::Any, false, "",
+    d.push_back({{"checkpoint-every", ParameterType::Real, "",
+                  "wall-clock seconds between two saves of a run's state (run --checkpoint, sweep --checkpoint-dir)",
+                  "1 <= checkpoint-every <= 1e7", shown(def.checkpoint_every), kUseRun | kUseSweep, EngineScope::Any, false, "",
                   [](double x) { return x >= 1 && x <= 1e7; }},
                  false, {}, {},
                  [](RunOptions& o, const Parameter& q, const RawValue& v) { o.checkpoint_every = read_real(q, v); }});

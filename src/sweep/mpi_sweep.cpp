@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "store/output_file.hpp"
 #include "store/run_json.hpp"
 
 #ifdef GRANCHAIN_WITH_MPI
@@ -55,7 +56,11 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
     const nlohmann::json message = nlohmann::json::parse(text);
     if (message.contains("index")) {
       const auto index = message.at("index").get<std::size_t>();
-      if (message.contains("result")) {
+      if (message.contains("saved")) {
+        runner.record_saved(index);
+      } else if (message.contains("fatal")) {
+        runner.fail(std::make_exception_ptr(OutputError(message.at("fatal").get<std::string>())));
+      } else if (message.contains("result")) {
         const RunResult result = run_result_from_json(message.at("result"));
         runner.record(index, &result, "");
       } else if (message.contains("collapse")) {
@@ -74,7 +79,7 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
   }
 }
 
-void work_for_rank0(const std::vector<SweepPoint>& points) {
+void work_for_rank0(const std::vector<SweepPoint>& points, const SweepCheckpoints* checkpoints, const PointStops& stops) {
   std::string text = "{}";
   for (;;) {
     check(MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, kTagReady, MPI_COMM_WORLD), "Send");
@@ -83,13 +88,32 @@ void work_for_rank0(const std::vector<SweepPoint>& points) {
     check(MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kTagWork, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "Recv");
     if (index < 0) return;
     nlohmann::json message = {{"index", index}};
+    PointOutcome outcome;
     try {
-      message["result"] = run_result_to_json(run_driven_column(points.at(static_cast<std::size_t>(index)).spec));
-    } catch (const InelasticCollapseError& c) {
-      message["error"] = c.what();
-      message["collapse"] = {{"t", c.time()}, {"first", c.particle_a()}, {"last", c.particle_b()}, {"collisions", c.collisions()}};
-    } catch (const std::exception& e) {
-      message["error"] = e.what();
+      outcome = run_sweep_point(points.at(static_cast<std::size_t>(index)), checkpoints, stops);
+    } catch (const std::exception& e) {  // a checkpoint that cannot be written: the sweep stops
+      message["fatal"] = e.what();
+      outcome.end = PointEnd::Abandoned;
+    }
+    switch (outcome.end) {
+      case PointEnd::Finished:
+        message["result"] = run_result_to_json(*outcome.result);
+        break;
+      case PointEnd::Collapsed: {
+        const InelasticCollapseError& c = *outcome.collapse;
+        message["error"] = outcome.error;
+        message["collapse"] = {{"t", c.time()}, {"first", c.particle_a()}, {"last", c.particle_b()}, {"collisions", c.collisions()}};
+        break;
+      }
+      case PointEnd::Failed:
+        message["error"] = outcome.error;
+        break;
+      case PointEnd::Saved:
+        message["saved"] = outcome.saved_t;
+        break;
+      case PointEnd::Abandoned:  // cancelled: nothing to report but a fatal error, if any
+        if (!message.contains("fatal")) message = nlohmann::json::object();
+        break;
     }
     text = message.dump();
   }
@@ -117,9 +141,10 @@ int MpiWorld::broadcast(int x) const {
 }
 
 void run_sweep_over_ranks(const MpiWorld& world, const std::vector<SweepPoint>& points, SweepRunner* runner,
-                          int threads, const SweepProgressCallback& progress, double progress_every) {
+                          int threads, const SweepProgressCallback& progress, double progress_every,
+                          const SweepCheckpoints* checkpoints, const PointStops& rank_stops) {
   if (world.rank() != 0) {
-    work_for_rank0(points);
+    work_for_rank0(points, checkpoints, rank_stops);
     return;
   }
   runner->run(threads, progress, progress_every, [&] { serve_ranks(world, *runner); });
@@ -132,7 +157,7 @@ MpiWorld::MpiWorld() = default;
 MpiWorld::~MpiWorld() = default;
 int MpiWorld::broadcast(int x) const { return x; }
 void run_sweep_over_ranks(const MpiWorld&, const std::vector<SweepPoint>&, SweepRunner* runner, int threads,
-                          const SweepProgressCallback& progress, double progress_every) {
+                          const SweepProgressCallback& progress, double progress_every, const SweepCheckpoints*, const PointStops&) {
   runner->run(threads, progress, progress_every);
 }
 

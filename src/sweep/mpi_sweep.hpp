@@ -36,9 +36,12 @@ class MpiWorld {
 };
 
 // Rank 0: runs `runner` with `threads` local threads while its main thread serves the other
-// ranks. Other ranks: run the points rank 0 sends until it says stop. points must be the same
-// list on every rank.
+// ranks. Other ranks: run the points rank 0 sends until it says stop, keeping their states in
+// `checkpoints` (if any; the same folder as rank 0's) and stopping them by `rank_stops` (the
+// rank's own cancel flag and checkpoint deadline); a point stopped with its state saved is
+// reported to rank 0 as such. points must be the same list on every rank.
 void run_sweep_over_ranks(const MpiWorld& world, const std::vector<SweepPoint>& points, SweepRunner* runner,
-                          int threads, const SweepProgressCallback& progress, double progress_every);
+                          int threads, const SweepProgressCallback& progress, double progress_every,
+                          const SweepCheckpoints* checkpoints = nullptr, const PointStops& rank_stops = {});
 
 }  // namespace granchain

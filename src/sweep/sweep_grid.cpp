@@ -27,8 +27,6 @@ const std::vector<std::string>& sweep_grid_parameters() {
   return names;
 }
 
-namespace {
-
 std::uint64_t fnv1a(const std::string& s) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char c : s) {
@@ -37,6 +35,8 @@ std::uint64_t fnv1a(const std::string& s) {
   }
   return h;
 }
+
+namespace {
 
 // One value of a grid axis; not given: the run's default applies.
 struct AxisValue {

@@ -32,6 +32,9 @@ struct SweepPoint {
   double cost = 0.0;            // estimated seconds of one core (sweep/cost_model.hpp)
 };
 
+// The 64-bit FNV-1a hash of a text (a point's key): the same on every machine and build.
+std::uint64_t fnv1a(const std::string& s);
+
 // Seed of a sweep point: SplitMix64 of (base seed, FNV-1a hash of the point's key without its
 // seed, replica), kept to 63 bits. Depends on nothing else (not on thread, rank, shard or order).
 std::uint64_t point_seed(std::uint64_t base_seed, const RunSpec& spec_without_seed, int replica);

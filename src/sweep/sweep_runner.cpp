@@ -14,18 +14,14 @@
 
 namespace granchain {
 
-namespace {
-// Wall-clock seconds since an arbitrary fixed moment (steady clock).
-double wall_clock_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
+double checkpoint_deadline(double limit) { return limit - std::min(300.0, limit / 5); }
 
-std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit) {
+std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit,
+                                            const SweepCheckpoints* checkpoints) {
   std::vector<std::size_t> longer;
   if (limit > 0)
     for (std::size_t i : todo)
-      if (kTimeLimitMargin * points.at(i).cost > limit) longer.push_back(i);
+      if (kTimeLimitMargin * points.at(i).cost > limit && !(checkpoints && SweepCheckpoints::covers(points.at(i)))) longer.push_back(i);
   return longer;
 }
 
@@ -41,20 +37,35 @@ std::string time_limit_too_short_message(const std::vector<SweepPoint>& points, 
 SweepRunner::SweepRunner(const std::vector<SweepPoint>& points, std::vector<std::size_t> todo, PointSink sink)
     : points_(points), todo_(std::move(todo)), sink_(std::move(sink)), handed_(todo_.size(), 0) {
   for (std::size_t i : todo_) total_cost_ += points_.at(i).cost;
-  start_ = wall_clock_seconds();
+  start_ = steady_clock_seconds();
 }
 
-bool SweepRunner::fits_in_time_limit(double cost) const {
+bool SweepRunner::fits_in_time_limit(const SweepPoint& point) const {
   if (!std::isfinite(time_limit_)) return true;
+  const double elapsed = steady_clock_seconds() - start_;
+  if (checkpoints_ && SweepCheckpoints::covers(point)) return elapsed < checkpoint_deadline(time_limit_);
   const double ratio = done_wall_cost_ > 0 ? std::clamp(done_wall_ / done_wall_cost_, 0.25, 10.0) : 1.0;
-  return wall_clock_seconds() - start_ + kTimeLimitMargin * ratio * cost <= time_limit_;
+  return elapsed + kTimeLimitMargin * ratio * point.cost <= time_limit_;
+}
+
+void SweepRunner::set_checkpoints(const SweepCheckpoints* checkpoints) {
+  checkpoints_ = checkpoints;
+  if (checkpoints_)
+    std::stable_partition(todo_.begin(), todo_.end(), [&](std::size_t i) { return checkpoints_->has_saved(points_[i]); });
+}
+
+PointStops SweepRunner::stops() const {
+  PointStops s;
+  s.cancel = cancel_;
+  if (checkpoints_ && std::isfinite(time_limit_)) s.suspend_at = start_ + checkpoint_deadline(time_limit_);
+  return s;
 }
 
 std::optional<std::size_t> SweepRunner::next() {
   std::lock_guard lock(mutex_);
   if (stop_ || cancelled()) return std::nullopt;
   for (std::size_t j = scan_from_; j < todo_.size(); ++j) {
-    if (handed_[j] || !fits_in_time_limit(points_[todo_[j]].cost)) continue;
+    if (handed_[j] || !fits_in_time_limit(points_[todo_[j]])) continue;
     handed_[j] = 1;
     ++handed_out_;
     while (scan_from_ < todo_.size() && handed_[scan_from_]) ++scan_from_;
@@ -66,6 +77,22 @@ std::optional<std::size_t> SweepRunner::next() {
 std::size_t SweepRunner::not_started() const {
   std::lock_guard lock(mutex_);
   return todo_.size() - handed_out_;
+}
+
+std::size_t SweepRunner::saved() const {
+  std::lock_guard lock(mutex_);
+  return saved_;
+}
+
+void SweepRunner::record_saved(std::size_t) {
+  std::lock_guard lock(mutex_);
+  ++saved_;
+}
+
+void SweepRunner::fail(std::exception_ptr error) {
+  std::lock_guard lock(mutex_);
+  if (!sink_error_) sink_error_ = std::move(error);
+  stop_ = true;
 }
 
 double SweepRunner::not_started_cost() const {
@@ -92,6 +119,8 @@ void SweepRunner::record(std::size_t index, const RunResult* result, const std::
   if (sink_error_) return;  // the store already failed: nothing more is written
   try {
     sink_(points_[index], result, error, collapse);
+    // Stored (or failed for good): a state saved of the point is spent.
+    if (checkpoints_ && SweepCheckpoints::covers(points_[index])) checkpoints_->remove(points_[index]);
   } catch (...) {
     sink_error_ = std::current_exception();
     stop_ = true;
@@ -105,7 +134,7 @@ SweepProgress SweepRunner::progress() const {
   p.failed = failed_;
   p.collapsed = collapsed_;
   p.total = todo_.size();
-  p.elapsed = wall_clock_seconds() - start_;
+  p.elapsed = steady_clock_seconds() - start_;
   double covered = done_cost_;
   std::uint64_t events = finished_events_;
   for (int t = 0; t < threads_; ++t) {
@@ -133,16 +162,31 @@ void SweepRunner::worker(int slot) {
       live_events_[slot] = 0;
       live_cost_[slot] = 0.0;
     };
+    PointOutcome outcome;
     try {
-      const RunResult result = run_driven_column(point.spec, live, point_progress_every_);
-      record(*index, &result, "", clear_live);
-    } catch (const RunCancelled&) {  // watch(): abandoned, not recorded
+      outcome = run_sweep_point(point, checkpoints_, stops(), live, point_progress_every_);
+    } catch (const std::exception&) {  // a checkpoint that cannot be written: the sweep stops
       clear_live();
+      fail(std::current_exception());
       return;
-    } catch (const InelasticCollapseError& c) {  // hard spheres: an outcome of the point
-      record(*index, nullptr, c.what(), clear_live, &c);
-    } catch (const std::exception& e) {  // UnphysicalStateError, or no memory left for this point
-      record(*index, nullptr, e.what(), clear_live);
+    }
+    switch (outcome.end) {
+      case PointEnd::Finished:
+        record(*index, &*outcome.result, "", clear_live);
+        break;
+      case PointEnd::Collapsed:
+        record(*index, nullptr, outcome.error, clear_live, &*outcome.collapse);
+        break;
+      case PointEnd::Failed:
+        record(*index, nullptr, outcome.error, clear_live);
+        break;
+      case PointEnd::Saved:  // cancelled or out of time: taken up again by the next invocation
+        clear_live();
+        record_saved(*index);
+        break;
+      case PointEnd::Abandoned:  // watch(): not recorded
+        clear_live();
+        return;
     }
   }
 }
@@ -153,7 +197,7 @@ void SweepRunner::run(int threads, const SweepProgressCallback& progress_cb, dou
   live_events_ = std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(threads));
   live_cost_ = std::make_unique<std::atomic<double>[]>(static_cast<std::size_t>(threads));
   for (int t = 0; t < threads; ++t) live_cost_[t] = 0.0;
-  start_ = wall_clock_seconds();
+  start_ = steady_clock_seconds();
 
   std::mutex wait_mutex;
   std::condition_variable wake;

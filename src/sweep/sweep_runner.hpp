@@ -15,6 +15,8 @@
 
 #include "engines/engine.hpp"
 #include "simulation/cancellation.hpp"
+#include "sweep/point_run.hpp"
+#include "sweep/sweep_checkpoints.hpp"
 #include "sweep/sweep_grid.hpp"
 
 namespace granchain {
@@ -43,9 +45,15 @@ using SweepProgressCallback = std::function<void(const SweepProgress&)>;
 
 // The margin a time limit leaves on a point's estimate (SweepRunner::set_time_limit).
 inline constexpr double kTimeLimitMargin = 1.25;
+// With checkpoints, the seconds from the start at which the points still running that keep one are
+// saved and stopped: 5 minutes before the limit (a fifth of it below 25 minutes), time for the
+// last stretch of a transient (one time unit) and the save.
+double checkpoint_deadline(double limit);
 // The points of todo that no invocation with this time limit can start: their estimate alone, with
-// the margin, exceeds it. Empty without a limit (limit <= 0).
-std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit);
+// the margin, exceeds it, and they keep no checkpoint (with checkpoints, a point of a resumable
+// engine runs over several invocations). Empty without a limit (limit <= 0).
+std::vector<std::size_t> points_longer_than(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& todo, double limit,
+                                            const SweepCheckpoints* checkpoints = nullptr);
 // The one-line refusal for them: "--time-limit = 60 s is shorter than the estimated run of 3 points
 // ...; valid: ...".
 std::string time_limit_too_short_message(const std::vector<SweepPoint>& points, const std::vector<std::size_t>& longer, double limit);
@@ -78,7 +86,16 @@ class SweepRunner {
   // by the margin kTimeLimitMargin. Points that do not fit are skipped, smaller ones after them may
   // still run; the skipped ones are left for a later invocation (not_started()). A worker that
   // finds nothing that fits stops (time only runs out).
+  // With checkpoints (set_checkpoints) a point that keeps one is handed out while the time is
+  // before checkpoint_deadline, whether or not it can end within the limit, and saved and stopped
+  // there if it has not ended.
   void set_time_limit(double seconds) { time_limit_ = seconds; }
+  // Points of resumable engines keep their state in `checkpoints` (resumed from there, saved as they
+  // go and when stopped, the file removed once the point is stored); points with a saved state are
+  // handed out first. Set before run().
+  void set_checkpoints(const SweepCheckpoints* checkpoints);
+  // What stops a point running on this process: the cancel flag and the checkpoint deadline.
+  PointStops stops() const;
   // Cancelling: once `flag` (simulation/cancellation.hpp) is set, from any thread, no point is
   // handed out any more and the points running are abandoned at their next progress report
   // (set_point_progress_every), neither recorded nor passed to the sink; run() then returns.
@@ -86,8 +103,16 @@ class SweepRunner {
   void watch(const CancelFlag* flag) { cancel_ = flag; }
   bool cancelled() const { return cancel_requested(cancel_); }
 
+  // A point stopped with its state saved (a cancel, the time limit): counted, not passed to the sink.
+  void record_saved(std::size_t index);
+  // An error that ends the sweep (a checkpoint that cannot be written, on any worker): no point is
+  // handed out any more, and run() rethrows it once the running points are done.
+  void fail(std::exception_ptr error);
+
   // Points of todo never handed out (after run(): those the time limit left).
   std::size_t not_started() const;
+  // Points stopped with their state saved in the checkpoints.
+  std::size_t saved() const;
   double not_started_cost() const;  // their estimated cost, seconds of one core
 
  private:
@@ -98,7 +123,8 @@ class SweepRunner {
   PointSink sink_;
   double total_cost_ = 0.0;
 
-  bool fits_in_time_limit(double cost) const;  // under mutex_
+  bool fits_in_time_limit(const SweepPoint& point) const;  // under mutex_
+  const SweepCheckpoints* checkpoints_ = nullptr;
 
   mutable std::mutex mutex_;  // guards the fields below and calls of the sink
   std::vector<char> handed_;   // per position of todo_: handed out
@@ -107,7 +133,7 @@ class SweepRunner {
   double time_limit_ = std::numeric_limits<double>::infinity();
   double done_wall_ = 0.0, done_wall_cost_ = 0.0;  // wall seconds and estimates of finished points with a result
   std::size_t done_ = 0;
-  std::size_t failed_ = 0, collapsed_ = 0;
+  std::size_t failed_ = 0, collapsed_ = 0, saved_ = 0;
   double done_cost_ = 0.0;
   std::uint64_t finished_events_ = 0;
   std::exception_ptr sink_error_;

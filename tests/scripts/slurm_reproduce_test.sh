@@ -2,7 +2,8 @@
 # scripts/slurm-reproduce-array.sh with Slurm and granchain faked: outside a job it creates shards/
 # and submits itself; inside task i it runs share i/64 of every sweep that reproduce --print-sweeps
 # lists, each with the walltime left, goes on after a sweep that left points (exit 75) and exits
-# 75, and exits with a failure's code before 75; a task outside 1..64 is refused. Then the real
+# 75, and exits with a failure's code before 75; the points of an engine that can save its state keep
+# it in the task's folder of states and need not fit the walltime; a task outside 1..64 is refused. Then the real
 # binary: every sweep of the large preset's across-N figures, as the script runs it, is accepted
 # (a dry run of shard 1/64), and the 64 shards of one of them list each of its points exactly once.
 set -euo pipefail
@@ -18,11 +19,21 @@ cat > bin/granchain <<'STUB'
 if [ "$1" = reproduce ]; then
   echo "reproduce $*" > reproduce.args
   printf '%s\n' "# 96 points, predicted 1 CPU-hours" "granchain sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1" \
-    "# 264 points" "granchain sweep --N 300 --e 0.99,0.1 --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4" "# 360 distinct points"
+    "# 264 points" "granchain sweep --N 300 --e 0.1 --engine reference --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4" "# 360 distinct points"
   exit 0
 fi
-if [[ " $* " == *" --dry-run "* ]]; then  # one point of this share, at FAKE_COST seconds
-  echo "     1  ${FAKE_COST:-100}  0  1  driven_column engine=exact N=200"
+reference=0
+[[ " $* " == *" --engine reference "* ]] && reference=1
+if [[ " $* " == *" --checkpoint-dir "* && $reference -eq 0 ]]; then  # no point of an exact sweep can keep a state
+  echo "granchain: error: --checkpoint-dir = x: no point of this sweep has an engine that can save its state" >&2
+  exit 2
+fi
+if [[ " $* " == *" --dry-run "* ]]; then  # one point of this share, at FAKE_COST (exact) or FAKE_REF_COST seconds
+  if [ "$reference" -eq 1 ]; then
+    echo "     1  ${FAKE_REF_COST:-100}  0  1  driven_column engine=reference N=300$([[ " $* " == *" --checkpoint-dir "* ]] && echo "  (checkpointed)")"
+  else
+    echo "     1  ${FAKE_COST:-100}  0  1  driven_column engine=exact N=200"
+  fi
   exit 0
 fi
 echo "$*" >> sweeps.args
@@ -49,16 +60,25 @@ grep -q -- "--figure fig6 --preset large --print-sweeps" reproduce.args || fail 
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "task 7 ran $(wc -l < sweeps.args) sweeps, not 2"
 head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --time-limit [0-9]*s --progress -q$" ||
   fail "first sweep: $(head -1 sweeps.args)"
-tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64" || fail "second sweep: $(tail -1 sweeps.args)"
+tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --checkpoint-dir shards/states-fig6-large-7 --time-limit" ||
+  fail "second sweep (reference engine: its points keep their states): $(tail -1 sweeps.args)"
 limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
 [ "$limit" -gt $(( walltime - 1000 )) ] && [ "$limit" -le "$walltime" ] || fail "time limit $limit s, not the job's walltime less half an hour ($walltime s)"
-# A share whose longest point cannot fit in the whole walltime is refused, and nothing of it runs.
+# A share whose longest point cannot fit in the whole walltime is refused, and nothing of it runs
+# (the next sweep does).
 rm -f sweeps.args
 rc=0
 SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 GRANCHAIN="$work/bin/granchain" FAKE_COST=$(( walltime * 4 / 5 )) bash "$script" 2> err.txt || rc=$?
 [ "$rc" -eq 2 ] || fail "a share longer than the walltime exited $rc, not 2"
-[ ! -e sweeps.args ] || fail "a share longer than the walltime ran: $(cat sweeps.args)"
+[ "$(wc -l < sweeps.args)" -eq 1 ] && ! grep -q -- "--N 200" sweeps.args ||
+  fail "a share longer than the walltime ran (or the next sweep did not): $(cat sweeps.args)"
 grep -q "its longest point needs $(( walltime + 1 )) s, more than the job's $walltime s" err.txt || fail "refusal: $(cat err.txt)"
+# Points that keep their state may be longer than the walltime: they go on in the resubmitted task.
+rm -f sweeps.args
+SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=7 GRANCHAIN="$work/bin/granchain" FAKE_REF_COST=$(( walltime * 4 )) FAKE_CODES="0 75" bash "$script" 2> err.txt || rc=$?
+[ "$rc" -eq 75 ] || fail "a share with checkpointed points longer than the walltime exited $rc, not 75"
+[ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the checkpointed sweep did not run: $(cat sweeps.args)"
+rc=0
 # A sweep that left points: the next one still runs, and the task asks to be resubmitted.
 [ "$(task "75 0")" -eq 75 ] || fail "a sweep that left points did not make the task exit 75"
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "the sweep after one that left points did not run"
