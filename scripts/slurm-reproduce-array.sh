@@ -66,10 +66,10 @@ while read -r line; do
   # of them may run over several jobs; a sweep without such points refuses the folder (exit 2).
   states=(--checkpoint-dir "shards/states-$FIGURE-$PRESET-$i")
   "$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" "${states[@]}" --dry-run > /dev/null 2>&1 || states=()
-  # The longest point of this share that keeps no state (stored or not: the sweep's own check
-  # counts them all), with the sweep's margin: a sweep refuses a time limit that it cannot hold.
+  # The longest point of this share still to run that keeps no state, with the sweep's margin, as
+  # the sweep's own check counts it: a sweep refuses a time limit that it cannot hold.
   need=$("$GRANCHAIN" "${words[@]}" --shard "$i/$SHARDS" --db "$store" "${states[@]}" --dry-run |
-    awk '/driven_column/ && !/\(checkpointed/ { v = $2 + 0; if (v > m) m = v } END { printf "%d", 1.25 * m + 1 }')
+    awk '/driven_column/ && !/\((stored|checkpointed)/ { v = $2 + 0; if (v > m) m = v } END { printf "%d", 1.25 * m + 1 }')
   if [ "$need" -gt "$WALLTIME_S" ]; then
     echo "slurm-reproduce-array: ${line}: its longest point needs ${need} s, more than the job's ${WALLTIME_S} s" >&2
     [ "$status" -eq 0 ] && status=2

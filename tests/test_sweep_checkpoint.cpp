@@ -137,8 +137,9 @@ TEST_F(SweepCheckpointCli, WhatCannotKeepCheckpointsIsRefused) {
   }
 }
 
-// The runner hands out first the points that have a saved state, and a point that keeps one is not
-// "longer than the limit": it runs over several invocations.
+// The runner hands out first the points that have a saved state, a point abandoned unsaved goes
+// back to the queue, and a point that keeps a state is not "longer than the limit": it runs over
+// several invocations.
 TEST(SweepCheckpoints, SavedPointsGoFirstAndNeedNotFitTheLimit) {
   const fs::path dir = fs::temp_directory_path() / ("granchain_sweep_states_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -169,6 +170,10 @@ TEST(SweepCheckpoints, SavedPointsGoFirstAndNeedNotFitTheLimit) {
   const auto first = runner.next();
   ASSERT_TRUE(first.has_value());
   EXPECT_EQ(*first, last_reference);
+  // A point abandoned unsaved goes back to the queue and is handed out again.
+  runner.put_back(*first);
+  EXPECT_EQ(runner.next(), first);
+  EXPECT_EQ(runner.not_started(), 5u);
   EXPECT_TRUE(states.remove(points[last_reference]));
   EXPECT_FALSE(states.has_saved(points[last_reference]));
   fs::remove_all(dir);

@@ -82,7 +82,7 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
 
 void record_interrupts(CancelFlag* also_set) {
   also_cancel.store(also_set);
-  install(record_signal, 0);
+  install(record_signal, SA_RESETHAND);  // a second signal takes the default action: ends at once
 }
 
 int recorded_interrupt() { return recorded; }

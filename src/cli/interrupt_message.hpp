@@ -19,7 +19,8 @@ void announce_on_interrupt(const std::string& what_was_kept, const std::vector<s
 
 // For a run that saves its state before it stops (run --checkpoint): SIGINT and SIGTERM are only
 // recorded, recorded_interrupt() returns the signal (0 before any), and the caller stops at its
-// next sample, saves, says so and ends by the signal with reraise_interrupt. A call of
+// next sample, saves, says so and ends by the signal with reraise_interrupt. A second signal ends
+// the process at once (the default action), the checkpoint as last saved. A call of
 // announce_on_interrupt puts the handlers back. `also_set` (if given) is set too, for work that
 // watches a CancelFlag (a sweep's points).
 void record_interrupts(CancelFlag* also_set = nullptr);

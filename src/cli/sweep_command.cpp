@@ -367,7 +367,9 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                             e.what(), checkpoints ? checkpoints->dir() : std::string()),
                 kExitStoreFailed);
   }
-  if (const int sig = checkpoints ? recorded_interrupt() : 0; sig != 0) {
+  // Rank 0's signal decides for every rank (each ends by it): a rank that saw a signal of its own
+  // has only left the sweep.
+  if (const int sig = checkpoints ? world.broadcast(rank0 ? recorded_interrupt() : 0) : 0; sig != 0) {
     if (rank0)
       fmt::print(stderr, "\ngranchain: interrupted by {}; every point that finished is stored in {}, the states of {} running point{} are "
                          "saved in {}; repeat the same command to go on\n",

@@ -56,10 +56,11 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
     const nlohmann::json message = nlohmann::json::parse(text);
     if (message.contains("index")) {
       const auto index = message.at("index").get<std::size_t>();
+      if (message.contains("fatal")) runner.fail(std::make_exception_ptr(OutputError(message.at("fatal").get<std::string>())));
       if (message.contains("saved")) {
         runner.record_saved(index);
-      } else if (message.contains("fatal")) {
-        runner.fail(std::make_exception_ptr(OutputError(message.at("fatal").get<std::string>())));
+      } else if (message.contains("abandoned")) {
+        runner.put_back(index);
       } else if (message.contains("result")) {
         const RunResult result = run_result_from_json(message.at("result"));
         runner.record(index, &result, "");
@@ -72,7 +73,8 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
         runner.record(index, nullptr, message.at("error").get<std::string>());
       }
     }
-    const auto next = runner.next();
+    // A rank that was stopped by a signal of its own leaves, whatever rank 0 does.
+    const auto next = message.contains("leaving") ? std::nullopt : runner.next();
     long long index = next ? static_cast<long long>(*next) : -1;
     check(MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, kTagWork, MPI_COMM_WORLD), "Send");
     if (!next) --active;
@@ -80,7 +82,7 @@ void serve_ranks(const MpiWorld& world, SweepRunner& runner) {
 }
 
 void work_for_rank0(const std::vector<SweepPoint>& points, const SweepCheckpoints* checkpoints, const PointStops& stops) {
-  std::string text = "{}";
+  std::string text = cancel_requested(stops.cancel) ? R"({"leaving": true})" : "{}";
   for (;;) {
     check(MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, kTagReady, MPI_COMM_WORLD), "Send");
     wait_for(0, kTagWork);
@@ -111,10 +113,11 @@ void work_for_rank0(const std::vector<SweepPoint>& points, const SweepCheckpoint
       case PointEnd::Saved:
         message["saved"] = outcome.saved_t;
         break;
-      case PointEnd::Abandoned:  // cancelled: nothing to report but a fatal error, if any
-        if (!message.contains("fatal")) message = nlohmann::json::object();
+      case PointEnd::Abandoned:  // cancelled unsaved: back in rank 0's queue
+        message["abandoned"] = true;
         break;
     }
+    if (cancel_requested(stops.cancel)) message["leaving"] = true;
     text = message.dump();
   }
 }

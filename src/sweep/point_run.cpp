@@ -22,14 +22,19 @@ PointOutcome run_sweep_point(const SweepPoint& point, const SweepCheckpoints* ch
   if (keeping) {
     try {
       from = checkpoints->saved(point);
-    } catch (const CheckpointError& e) {  // not this point's: of no use to it, and in its way
+      if (from) {
+        const SavedRunPlace place = saved_run_place(from->state);
+        const bool other_build = from->written_by != code_version();
+        if (checkpoints->announces_resumes() || other_build)
+          fmt::print(stderr, "sweep: {}resuming {} at t = {:.6g} of {:.6g} ({}, saved by granchain {}{})\n", other_build ? "warning: " : "",
+                     point.key, place.t, point.spec.transient + point.spec.T, place.in_window ? "measuring" : "transient", from->written_by,
+                     other_build ? fmt::format("; this is {}: bit for bit the same result only if the engine and observers are unchanged",
+                                               code_version())
+                                 : "");
+      }
+    } catch (const std::exception& e) {  // CheckpointError, StateArchiveError: of no use to the point, and in its way
       fmt::print(stderr, "granchain: warning: --checkpoint-dir: {}; point {} starts anew and overwrites it\n", e.what(), point.key);
-    }
-    if (from && checkpoints->announces_resumes()) {
-      const SavedRunPlace place = saved_run_place(from->state);
-      fmt::print(stderr, "sweep: resuming {} at t = {:.6g} of {:.6g} ({}, saved by granchain {}{})\n", point.key, place.t,
-                 point.spec.transient + point.spec.T, place.in_window ? "measuring" : "transient", from->written_by,
-                 from->written_by == code_version() ? "" : fmt::format("; this is {}", code_version()));
+      from.reset();
     }
   }
 

@@ -89,9 +89,19 @@ void SweepRunner::record_saved(std::size_t) {
   ++saved_;
 }
 
+void SweepRunner::put_back(std::size_t index) {
+  std::lock_guard lock(mutex_);
+  const auto it = std::find(todo_.begin(), todo_.end(), index);
+  const auto j = static_cast<std::size_t>(it - todo_.begin());
+  if (it == todo_.end() || !handed_[j]) return;
+  handed_[j] = 0;
+  --handed_out_;
+  scan_from_ = std::min(scan_from_, j);
+}
+
 void SweepRunner::fail(std::exception_ptr error) {
   std::lock_guard lock(mutex_);
-  if (!sink_error_) sink_error_ = std::move(error);
+  if (!fatal_error_) fatal_error_ = std::move(error);
   stop_ = true;
 }
 
@@ -119,8 +129,9 @@ void SweepRunner::record(std::size_t index, const RunResult* result, const std::
   if (sink_error_) return;  // the store already failed: nothing more is written
   try {
     sink_(points_[index], result, error, collapse);
-    // Stored (or failed for good): a state saved of the point is spent.
-    if (checkpoints_ && SweepCheckpoints::covers(points_[index])) checkpoints_->remove(points_[index]);
+    // Stored (a result or a collapse): a state saved of the point is spent. A failed point keeps
+    // it (an error such as no memory may pass; an unphysical state comes back where it was).
+    if ((result || collapse) && checkpoints_ && SweepCheckpoints::covers(points_[index])) checkpoints_->remove(points_[index]);
   } catch (...) {
     sink_error_ = std::current_exception();
     stop_ = true;
@@ -167,6 +178,7 @@ void SweepRunner::worker(int slot) {
       outcome = run_sweep_point(point, checkpoints_, stops(), live, point_progress_every_);
     } catch (const std::exception&) {  // a checkpoint that cannot be written: the sweep stops
       clear_live();
+      put_back(*index);
       fail(std::current_exception());
       return;
     }
@@ -184,8 +196,9 @@ void SweepRunner::worker(int slot) {
         clear_live();
         record_saved(*index);
         break;
-      case PointEnd::Abandoned:  // watch(): not recorded
+      case PointEnd::Abandoned:  // watch(): not recorded, left for a repeat
         clear_live();
+        put_back(*index);
         return;
     }
   }
@@ -231,6 +244,7 @@ void SweepRunner::run(int threads, const SweepProgressCallback& progress_cb, dou
     progress_cb(p);
   }
   if (sink_error_) std::rethrow_exception(sink_error_);
+  if (fatal_error_) std::rethrow_exception(fatal_error_);
 }
 
 }  // namespace granchain

@@ -105,8 +105,12 @@ class SweepRunner {
 
   // A point stopped with its state saved (a cancel, the time limit): counted, not passed to the sink.
   void record_saved(std::size_t index);
+  // A point abandoned unfinished and unsaved (its worker was cancelled): back in the queue, for
+  // another worker or a repeat of the command.
+  void put_back(std::size_t index);
   // An error that ends the sweep (a checkpoint that cannot be written, on any worker): no point is
-  // handed out any more, and run() rethrows it once the running points are done.
+  // handed out any more, the points running go on and are stored, and run() rethrows it once they
+  // are done (after a failure of the store, which it rethrows first).
   void fail(std::exception_ptr error);
 
   // Points of todo never handed out (after run(): those the time limit left).
@@ -136,7 +140,8 @@ class SweepRunner {
   std::size_t failed_ = 0, collapsed_ = 0, saved_ = 0;
   double done_cost_ = 0.0;
   std::uint64_t finished_events_ = 0;
-  std::exception_ptr sink_error_;
+  std::exception_ptr sink_error_;   // the store failed: nothing more is stored
+  std::exception_ptr fatal_error_;  // fail(): no point is handed out any more, the running ones are still stored
   std::atomic<bool> stop_{false};
   const CancelFlag* cancel_ = nullptr;
 
