@@ -72,7 +72,7 @@ TEST_F(ReproduceCli, SmokePresetDrawsEveryFigureAndTable1) {
   // 75 stores more (runs and counts come before any drawing), and the repeats end.
   std::int64_t stored = 0;
   CliResult r{75, "", ""};
-  for (int sitting = 0; sitting < 8 && r.exit_code == 75; ++sitting) {
+  for (int sitting = 0; sitting < 20 && r.exit_code == 75; ++sitting) {  // each stores more: they end
     r = run("reproduce --figure all --preset smoke --out figs -q --time-limit 6");
     const std::int64_t now = query(dir_ / "reproduce.db", "SELECT (SELECT count(*) FROM runs) + (SELECT count(*) FROM collapse_runs)");
     if (r.exit_code == 75) {
