@@ -115,6 +115,27 @@ TEST_F(SweepCheckpointCli, RanksSaveAndResumeThroughTheSameFolder) {
 #endif
 }
 
+// A state that cannot be written (a full 16 KiB tmpfs; mounting needs root, elsewhere the test is
+// skipped) stops the sweep: the point that could not save is not stored, while the exact engine's
+// point running beside it still is, and the sweep exits 4 saying so.
+TEST_F(SweepCheckpointCli, AStateThatCannotBeSavedStopsTheSweepButKeepsWhatFinishes) {
+  fs::create_directories(dir_ / "small");
+  if (std::system(("mount -t tmpfs -o size=16k tmpfs '" + (dir_ / "small").string() + "' 2> /dev/null").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  const CliResult r = run("sweep --engine reference,exact --N 20 --e 0.5 --k 1e10 --T 400 --transient 20 --seed 3 -q --threads 2 "
+                          "--db s.db --checkpoint-dir small --checkpoint-every 1");
+  const std::size_t left = saved_states("small");
+  std::system(("umount '" + (dir_ / "small").string() + "'").c_str());
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("--checkpoint-dir: cannot write"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the sweep stopped, every point stored so far is complete and the states saved before are kept in small"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'exact'"), 1);
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'reference'"), 0);
+  EXPECT_EQ(left, 0u);  // no half-written state
+}
+
 // Bad input: one line naming the parameter and what is valid, exit code 2, nothing written.
 TEST_F(SweepCheckpointCli, WhatCannotKeepCheckpointsIsRefused) {
   struct Bad {
