@@ -123,7 +123,7 @@ Subcommand add_sweep_command(CLI::App& app) {
   sub_->add_option("--time-limit", impl.time_limit,
                    "a batch job's walltime: start only points predicted (cost model, scaled by the points finished) to end "
                    "within it, leave the rest for a repeat of the command, and exit 75; points whose estimate alone exceeds "
-                   "it are refused (exit 2); seconds, 90m, 2.5h or [D-]H:MM:SS")
+                   "it are refused (exit 2) unless they keep their state (--checkpoint-dir); seconds, 90m, 2.5h or [D-]H:MM:SS")
       ->type_name("DURATION");
   sub_->add_option("--checkpoint-dir", impl.checkpoint_dir,
                    "keep the state of every running point of a resumable engine (" + resumable_engine_list() +
