@@ -317,7 +317,7 @@ void check_checkpoint(const RunOptions& o, const std::map<std::string, RawValue>
     return;
   }
   const EngineInfo& engine = engine_info(o.spec.engine.kind);
-  if (!engine.resumable || o.spec.engine.start_k > 0) {
+  if (!can_resume(o.spec)) {
     const RawValue& given = raw.at("checkpoint");
     throw InputError(fmt::format("--checkpoint = {}{}: the {} engine{} cannot save its state; valid: --engine {}", given.text(),
                                  from_where(given), engine.name, o.spec.engine.start_k > 0 ? " with its soft start" : "",

@@ -30,6 +30,8 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
+bool can_resume(const RunSpec& spec) { return engine_info(spec.engine.kind).resumable && !(spec.engine.start_k > 0); }
+
 SavedRunPlace saved_run_place(const StateArchive& state) {
   return {saved_value<double>(state, "t"), saved_value<bool>(state, "in_window")};
 }
@@ -93,7 +95,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   bool in_window = false;
   double wall_before = 0.0, cpu_before = 0.0;  // spent in the sittings before a resumption
   const bool saving = static_cast<bool>(resumption.save);
-  if ((saving || resumption.resume_from != nullptr) && (soft_start || !engine_info(spec.engine.kind).resumable)) {
+  if ((saving || resumption.resume_from != nullptr) && !can_resume(spec)) {
     throw std::logic_error("run_driven_column: a run of this engine cannot be saved or resumed (EngineInfo::resumable)");
   }
   if (resumption.resume_from != nullptr) {

@@ -98,6 +98,9 @@ struct SavedRunPlace {
   bool in_window = false;
 };
 SavedRunPlace saved_run_place(const StateArchive& state);
+// Whether a run of this spec can be saved and resumed: its engine is resumable (EngineInfo) and
+// it has no soft start (the switch of engines is not saved).
+bool can_resume(const RunSpec& spec);
 
 // The hard spheres' start from a soft column's state: centres raised from the bottom up until no
 // pair overlaps and particle 1 does not overlap the floor or the plate, velocities kept. The

@@ -4,7 +4,6 @@
 
 #include <filesystem>
 
-#include "engines/engine_registry.hpp"
 #include "store/output_file.hpp"
 #include "version.hpp"
 
@@ -18,7 +17,7 @@ void SweepCheckpoints::create_folder() const {
 }
 
 bool SweepCheckpoints::covers(const SweepPoint& point) {
-  return engine_info(point.spec.engine.kind).resumable && !(point.spec.engine.start_k > 0);
+  return can_resume(point.spec);
 }
 
 std::string SweepCheckpoints::path(const SweepPoint& point) const {
