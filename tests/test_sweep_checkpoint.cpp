@@ -28,8 +28,9 @@ class SweepCheckpointCli : public Cli {
   }
 };
 
-// Two points of about 5 s each on this machine (the cost model says 2.3 s): each is stopped at
-// least once by a time limit of 2 s (its points are saved 0.4 s before it).
+// Two points of about 4 s each on this machine (the cost model says 2.3 s): a time limit of 1 s,
+// the shortest --time-limit takes, saves them 0.2 s before it, so they need about six sittings
+// here and at least three on a machine up to 2.5 times faster.
 const std::string kPoints = "sweep --engine reference --N 20 --e 0.5 --k 1e7 --T 200 --transient 20 --replicas 2 --seed 3 -q";
 
 }  // namespace
@@ -40,13 +41,13 @@ TEST_F(SweepCheckpointCli, ATimeLimitSavesThePointsAndRepeatsFinishThemBitForBit
   ASSERT_EQ(whole.size(), 2u);
 
   // Without checkpoints, a limit shorter than a point's estimate is refused, nothing written.
-  const CliResult refused = run(kPoints + " --db cut.db --time-limit 2");
+  const CliResult refused = run(kPoints + " --db cut.db --time-limit 1");
   EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_NE(refused.err.find("--time-limit = 2.0 s is shorter than the estimated run of 2 points"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--time-limit = 1.0 s is shorter than the estimated run of 2 points"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(dir_ / "cut.db"));
 
-  // With them, each invocation runs until 0.4 s before the limit, saves and exits 75.
-  const std::string cut = kPoints + " --db cut.db --time-limit 2 --checkpoint-dir states";
+  // With them, each invocation runs until 0.2 s before the limit, saves and exits 75.
+  const std::string cut = kPoints + " --db cut.db --time-limit 1 --checkpoint-dir states";
   const CliResult first = run(cut);
   ASSERT_EQ(first.exit_code, 75) << first.err;
   EXPECT_NE(first.err.find("0 points not started (estimated 0.0 s of one core), 2 stopped part-way with their states saved in states"),
