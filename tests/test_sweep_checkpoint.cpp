@@ -117,14 +117,15 @@ TEST_F(SweepCheckpointCli, RanksSaveAndResumeThroughTheSameFolder) {
 }
 
 // A state that cannot be written (a full 16 KiB tmpfs; mounting needs root, elsewhere the test is
-// skipped) stops the sweep: the point that could not save is not stored, while the exact engine's
-// point running beside it still is, and the sweep exits 4 saying so.
+// skipped) stops the sweep: the point that could not save is not stored, while the point running
+// beside it that keeps no state (hard spheres after a soft start, about 4 s) still is, and the
+// sweep exits 4 saying so.
 TEST_F(SweepCheckpointCli, AStateThatCannotBeSavedStopsTheSweepButKeepsWhatFinishes) {
   fs::create_directories(dir_ / "small");
   if (std::system(("mount -t tmpfs -o size=16k tmpfs '" + (dir_ / "small").string() + "' 2> /dev/null").c_str()) != 0)
     GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
-  const CliResult r = run("sweep --engine reference,exact --N 20 --e 0.5 --k 1e10 --T 400 --transient 20 --seed 3 -q --threads 2 "
-                          "--db s.db --checkpoint-dir small --checkpoint-every 1");
+  const CliResult r = run("sweep --engine reference,hard --start-k 1e6 --tc 1e-4 --N 20 --e 0.5 --k 1e10 --T 6e4 --transient 20 "
+                          "--seed 3 -q --threads 2 --db s.db --checkpoint-dir small --checkpoint-every 1");
   const std::size_t left = saved_states("small");
   std::system(("umount '" + (dir_ / "small").string() + "'").c_str());
   EXPECT_EQ(r.exit_code, 4) << r.err;
@@ -132,7 +133,7 @@ TEST_F(SweepCheckpointCli, AStateThatCannotBeSavedStopsTheSweepButKeepsWhatFinis
   EXPECT_NE(r.err.find("the sweep stopped, every point stored so far is complete and the states saved before are kept in small"),
             std::string::npos)
       << r.err;
-  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'exact'"), 1);
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'hard'"), 1);
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'reference'"), 0);
   EXPECT_EQ(left, 0u);  // no half-written state
 }
@@ -143,9 +144,9 @@ TEST_F(SweepCheckpointCli, WhatCannotKeepCheckpointsIsRefused) {
     std::string args, expect;
   };
   for (const Bad& b : std::vector<Bad>{
-           {"--engine exact --checkpoint-dir states",
-            "--checkpoint-dir = states: no point of this sweep has an engine that can save its state; valid: with --engine reference, "
-            "reference-located"},
+           {"--engine hard --start-k 1e4 --transient 1 --checkpoint-dir states",
+            "--checkpoint-dir = states: no point of this sweep can save its state; valid: points of --engine exact, reference, "
+            "reference-located, hard without a soft start (--start-k)"},
            {"--engine reference --checkpoint-every 60", "--checkpoint-every = 60: it acts only with --checkpoint-dir DIR"},
            {"--engine reference --checkpoint-dir states --checkpoint-every 0.5", "1 <= checkpoint-every <= 1e7"},
            {"--engine reference --checkpoint-dir ''", "--checkpoint-dir: the path is empty"},
@@ -167,7 +168,7 @@ TEST(SweepCheckpoints, SavedPointsGoFirstAndNeedNotFitTheLimit) {
   fs::remove_all(dir);
   SweepDefinition def;
   def.raw = {{"N", RawValue("3")}, {"e", RawValue("0.5,0.6,0.7")}, {"k", RawValue("1e4")}, {"T", RawValue("20")},
-             {"engine", RawValue("reference,exact")}};
+             {"engine", RawValue("reference,hard")}, {"start-k", RawValue("1e3")}};
   std::vector<SweepPoint> points = build_sweep_points(def);
   ASSERT_EQ(points.size(), 6u);
   for (SweepPoint& p : points) p.cost = 1e6;
@@ -178,7 +179,7 @@ TEST(SweepCheckpoints, SavedPointsGoFirstAndNeedNotFitTheLimit) {
   for (std::size_t i : all) reference_count += SweepCheckpoints::covers(points[i]) ? 1 : 0;
   ASSERT_EQ(reference_count, 3u);
   EXPECT_EQ(points_longer_than(points, all, 3600.0).size(), 6u);
-  EXPECT_EQ(points_longer_than(points, all, 3600.0, &states).size(), 3u);  // the exact engine's
+  EXPECT_EQ(points_longer_than(points, all, 3600.0, &states).size(), 3u);  // the soft-started hard spheres' 
 
   // A saved state for the last reference point in build order: it is handed out first.
   std::size_t last_reference = 0;

@@ -64,6 +64,15 @@ class ChainSchedule {
   const Detail& detail(int slot) const { return details_[slot]; }
   const Time& time(int slot) const { return queue_.time(slot); }
 
+  int slots() const { return locals_ + pairs_ + 1; }
+  // Every slot's time in slot order: with the details, all a checkpoint needs, since setting them
+  // again in slot order after reset() rebuilds the same queue (its order depends on the times alone).
+  std::vector<Time> times() const {
+    std::vector<Time> t(static_cast<std::size_t>(slots()));
+    for (int slot = 0; slot < slots(); ++slot) t[slot] = time(slot);
+    return t;
+  }
+
   int next_slot() const { return queue_.next_slot(); }
   Time next_time() const { return queue_.next_time(); }
 

@@ -27,11 +27,11 @@ std::unique_ptr<Engine> make_hard(const EngineChoice& c, const ChainParameters& 
 
 const std::vector<EngineInfo>& engines() {
   //                                        kind                     name          hard   stepped fine  audit  resumable
-  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, false, make_exact},
+  static const std::vector<EngineInfo> all{{EngineKind::Exact, "exact", false, false, true, true, true, make_exact},
                                            {EngineKind::Reference, "reference", false, true, false, false, true, make_reference},
                                            {EngineKind::ReferenceLocated, "reference-located", false, true, false, false, true,
                                             make_reference_located},
-                                           {EngineKind::Hard, "hard", true, false, false, false, false, make_hard}};
+                                           {EngineKind::Hard, "hard", true, false, false, false, true, make_hard}};
   return all;
 }
 

@@ -52,7 +52,7 @@ const EngineInfo* find_engine(std::string_view name);
 EngineKind stored_engine_kind(std::string_view name);
 // "exact, reference, reference-located, hard": for help texts and error messages.
 std::string engine_name_list();
-// The same for the resumable engines only: "reference, reference-located".
+// The same for the resumable engines only.
 std::string resumable_engine_list();
 
 std::unique_ptr<Engine> make_engine(const EngineChoice& choice, const ChainParameters& p, const ChainState& initial,

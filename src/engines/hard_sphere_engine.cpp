@@ -2,6 +2,7 @@
 
 #include "engines/free_flight.hpp"
 #include "engines/plate_flight.hpp"
+#include "model/state_archive.hpp"
 
 #include <fmt/format.h>
 
@@ -66,6 +67,56 @@ HardSphereEngine::HardSphereEngine(const ChainParameters& p, const ChainState& i
   schedule_.reset(n_, false);
   for (int i = 0; i + 1 < n_; ++i) predict_gap(i);
   predict_floor();
+}
+
+void HardSphereEngine::save(StateArchive& out) const {
+  out["now"] = now_;
+  out["u"] = pack_array(u_);
+  out["tu"] = pack_array(tu_);
+  out["gap_t"] = pack_array(gaps_.t);
+  out["gap_s"] = pack_array(gaps_.s);
+  out["gap_c"] = pack_array(gaps_.c);
+  out["floor_h"] = floor_h_;
+  out["floor_t"] = floor_t_;
+  out["floor_switch"] = floor_switch_;
+  out["last_collision"] = pack_array(last_collision_);
+  out["tc_elastic"] = tc_elastic_;
+  out["ring_t"] = pack_array(ring_t_);
+  out["ring_pair"] = pack_array(ring_pair_);
+  out["ring_next"] = ring_next_;
+  out["collisions"] = collisions_;
+  out["slot_time"] = pack_array(schedule_.times());
+  out["steps"] = counters_.steps;
+  out["contact_ends"] = counters_.contact_ends;
+  out["floor_hits"] = counters_.floor_hits;
+}
+
+void HardSphereEngine::restore(const StateArchive& in) {
+  const auto n = static_cast<std::size_t>(n_);
+  now_ = saved_value<double>(in, "now");
+  u_ = unpack_array<double>(in, "u", n);
+  tu_ = unpack_array<double>(in, "tu", n);
+  gaps_.t = unpack_array<double>(in, "gap_t", gaps_.t.size());
+  gaps_.s = unpack_array<double>(in, "gap_s", gaps_.s.size());
+  gaps_.c = unpack_array<double>(in, "gap_c", gaps_.c.size());
+  floor_h_ = saved_value<double>(in, "floor_h");
+  floor_t_ = saved_value<double>(in, "floor_t");
+  floor_switch_ = saved_value<bool>(in, "floor_switch");
+  last_collision_ = unpack_array<double>(in, "last_collision", n);
+  tc_elastic_ = saved_value<std::uint64_t>(in, "tc_elastic");
+  ring_t_ = unpack_array<double>(in, "ring_t", ring_t_.size());
+  ring_pair_ = unpack_array<int>(in, "ring_pair", ring_pair_.size());
+  ring_next_ = saved_value<std::size_t>(in, "ring_next");
+  collisions_ = saved_value<std::uint64_t>(in, "collisions");
+  if (ring_next_ >= ring_t_.size() && !ring_t_.empty()) throw StateArchiveError("saved state: the collapse watch's place is out of its ring");
+  schedule_.reset(n_, false);
+  const std::vector<double> slot_time = unpack_array<double>(in, "slot_time", static_cast<std::size_t>(schedule_.slots()));
+  for (int slot = 0; slot < schedule_.slots(); ++slot) schedule_.set(slot, slot_time[slot]);
+  counters_.steps = saved_value<std::uint64_t>(in, "steps");
+  counters_.contact_ends = saved_value<std::uint64_t>(in, "contact_ends");
+  counters_.floor_hits = saved_value<std::uint64_t>(in, "floor_hits");
+  if (!std::isfinite(now_)) throw StateArchiveError("saved state: the hard engine's time is not finite");
+  state_valid_ = false;
 }
 
 // ----------------------------------------------------------------------------------------------

@@ -47,6 +47,11 @@ class HardSphereEngine final : public Engine {
   double time() const override { return now_; }
   EngineCounters counters() const override { return counters_; }
 
+  // A checkpoint: velocities, gaps, the floor height, the schedule, the TC model's and the
+  // collapse watch's memory and the counts, as stored.
+  void save(StateArchive& out) const override;
+  void restore(const StateArchive& in) override;
+
   // Kinetic + gravitational energy per unit mass at time(), z measured from the floor level of
   // the centres (d/2). For conservation tests.
   double mechanical_energy_per_mass() const;

@@ -2,8 +2,8 @@
 # scripts/slurm-reproduce-array.sh with Slurm and granchain faked: outside a job it creates shards/
 # and submits itself; inside task i it runs share i/64 of every sweep that reproduce --print-sweeps
 # lists, each with the walltime left, goes on after a sweep that left points (exit 75) and exits
-# 75, and exits with a failure's code before 75; the points of an engine that can save its state keep
-# it in the task's folder of states and need not fit the walltime; a task outside 1..64 is refused. Then the real
+# 75, and exits with a failure's code before 75; the points that can save their state keep it in the
+# task's folder of states and need not fit the walltime; a task outside 1..64 is refused. Then the real
 # binary: every sweep of the large preset's across-N figures, as the script runs it, is accepted
 # (a dry run of shard 1/64), and the 64 shards of one of them list each of its points exactly once.
 set -euo pipefail
@@ -18,21 +18,21 @@ cat > bin/granchain <<'STUB'
 #!/usr/bin/env bash
 if [ "$1" = reproduce ]; then
   echo "reproduce $*" > reproduce.args
-  printf '%s\n' "# 96 points, predicted 1 CPU-hours" "granchain sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1" \
+  printf '%s\n' "# 96 points, predicted 1 CPU-hours" "granchain sweep --N 200 --e 0.975,0.3 --engine hard --start-k 1e12 --T 1e3 --T0 1" \
     "# 264 points" "granchain sweep --N 300 --e 0.1 --engine reference --k 1e5:1e10:x10 --T 1e3 --T0 1 --replicas 4" "# 360 distinct points"
   exit 0
 fi
-reference=0
-[[ " $* " == *" --engine reference "* ]] && reference=1
-if [[ " $* " == *" --checkpoint-dir "* && $reference -eq 0 ]]; then  # no point of an exact sweep can keep a state
-  echo "granchain: error: --checkpoint-dir = x: no point of this sweep has an engine that can save its state" >&2
+keeps=1
+[[ " $* " == *" --start-k "* ]] && keeps=0
+if [[ " $* " == *" --checkpoint-dir "* && $keeps -eq 0 ]]; then  # hard spheres after a soft start keep no state
+  echo "granchain: error: --checkpoint-dir = x: no point of this sweep can save its state" >&2
   exit 2
 fi
-if [[ " $* " == *" --dry-run "* ]]; then  # one point of this share, at FAKE_COST (exact) or FAKE_REF_COST seconds
-  if [ "$reference" -eq 1 ]; then
+if [[ " $* " == *" --dry-run "* ]]; then  # one point of this share, at FAKE_COST (no state) or FAKE_REF_COST seconds
+  if [ "$keeps" -eq 1 ]; then
     echo "     1  ${FAKE_REF_COST:-100}  0  1  driven_column engine=reference N=300$([[ " $* " == *" --checkpoint-dir "* ]] && echo "  (checkpointed)")"
   else
-    echo "     1  ${FAKE_COST:-100}  0  1  driven_column engine=exact N=200"
+    echo "     1  ${FAKE_COST:-100}  0  1  driven_column engine=hard N=200"
   fi
   exit 0
 fi
@@ -58,10 +58,10 @@ grep -q -- "--array=7 .*slurm-reproduce-array.sh" sbatch.args || fail "sbatch go
 [ "$(task "0 0")" -eq 0 ] || fail "task 7 did not succeed"
 grep -q -- "--figure fig6 --preset large --print-sweeps" reproduce.args || fail "reproduce got: $(cat reproduce.args)"
 [ "$(wc -l < sweeps.args)" -eq 2 ] || fail "task 7 ran $(wc -l < sweeps.args) sweeps, not 2"
-head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --k 1e5:1e10:x10 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --time-limit [0-9]*s --progress -q$" ||
+head -1 sweeps.args | grep -q -- "^sweep --N 200 --e 0.975,0.3 --engine hard --start-k 1e12 --T 1e3 --T0 1 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --time-limit [0-9]*s --progress -q$" ||
   fail "first sweep: $(head -1 sweeps.args)"
 tail -1 sweeps.args | grep -q -- "--replicas 4 --shard 7/64 --threads 4 --db shards/fig6-large-7.db --checkpoint-dir shards/states-fig6-large-7 --time-limit" ||
-  fail "second sweep (reference engine: its points keep their states): $(tail -1 sweeps.args)"
+  fail "second sweep (its points keep their states): $(tail -1 sweeps.args)"
 limit=$(head -1 sweeps.args | sed 's/.*--time-limit \([0-9]*\)s.*/\1/')
 [ "$limit" -gt $(( walltime - 1000 )) ] && [ "$limit" -le "$walltime" ] || fail "time limit $limit s, not the job's walltime less half an hour ($walltime s)"
 # A share whose longest point cannot fit in the whole walltime is refused, and nothing of it runs
@@ -97,19 +97,19 @@ if SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=65 GRANCHAIN="$work/bin/granchain" bash "$
 fi
 grep -q "outside 1..64" err.txt || fail "task 65: $(cat err.txt)"
 
-# The real binary: every sweep of the large preset, with the flags the script adds, is accepted, its
-# longest point fits in the job's walltime with the sweep's margin, and no two sweeps share a point
-# (each is split into shards of its own: a shared point would be computed twice).
+# The real binary: every sweep of the large preset, with the flags the script adds, is accepted, every
+# point keeps its state (so none needs to fit in one job), and no two sweeps share a point (each is
+# split into shards of its own: a shared point would be computed twice).
 "$binary" reproduce --figure fig6 --preset large --print-sweeps > print.txt
 grep '^granchain sweep ' print.txt > large.txt
 [ "$(wc -l < large.txt)" -ge 10 ] || fail "the large preset lists $(wc -l < large.txt) sweeps"
 : > keys.txt
 while read -r line; do
   read -ra words <<< "${line#granchain }"
-  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --time-limit "${walltime}s" --dry-run > /dev/null ||
-    fail "refused: $line"
-  "$binary" "${words[@]}" --db "$work/none.db" --dry-run > dry.txt
-  awk -v w="$walltime" '/driven_column/ { v = $2 + 0; if (1.25 * v > w) bad = 1 } END { exit bad }' dry.txt || fail "a point of '$line' exceeds the walltime"
+  "$binary" "${words[@]}" --shard 1/64 --threads 1 --db "$work/none.db" --checkpoint-dir "$work/states" --time-limit "${walltime}s" \
+    --dry-run > /dev/null || fail "refused: $line"
+  "$binary" "${words[@]}" --db "$work/none.db" --checkpoint-dir "$work/states" --dry-run > dry.txt
+  awk '/driven_column/ && !/\(checkpointed\)/ { bad = 1 } END { exit bad }' dry.txt || fail "a point of '$line' keeps no state"
   awk '/driven_column/ { print $4 }' dry.txt >> keys.txt
 done < large.txt
 distinct=$(grep -o '^# [0-9]* distinct points' print.txt | awk '{ print $2 }')

@@ -90,6 +90,11 @@ class ExactEngine final : public Engine {
   // Overlaps x_i = d - (z_{i+1} - z_i) at time() straight from the stored gaps and modes (full
   // relative precision, unlike differences of state().z).
   std::vector<double> overlaps() const;
+  // A checkpoint (exact_checkpoint.cpp): every cluster, gap, the floor height, the schedule, the
+  // plate's piece and grounded cluster, the mode cache and the counts, as stored (no value is
+  // recomputed, so the restored engine goes on bit for bit).
+  void save(StateArchive& out) const override;
+  void restore(const StateArchive& in) override;
   // Events handled by the short paths of exact_binary.cpp (ExactOptions::pair_shortcuts).
   std::uint64_t shortcut_events() const { return shortcut_events_; }
 
