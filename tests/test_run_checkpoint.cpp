@@ -10,11 +10,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <functional>
 #include <thread>
 
 #include "cli_fixture.hpp"
 #include "config/run_key.hpp"
 #include "engines/engine_registry.hpp"
+#include "engines/fine_time.hpp"
 #include "model/state_archive.hpp"
 #include "simulation/cancellation.hpp"
 #include "simulation/driven_run.hpp"
@@ -261,6 +264,97 @@ TEST(RunCheckpoint, AStateThatDoesNotFitIsRefused) {
     saving.save = [](const StateArchive&) {};
     EXPECT_THROW(run_driven_column(s, {}, 0.5, saving), std::logic_error);
   }
+  // Hard spheres after a soft start (the switch of engines is not saved).
+  RunSpec soft = column(EngineKind::Hard, DriveKind::Thermal);
+  soft.engine.start_k = 1e4;
+  EXPECT_FALSE(can_resume(soft));
+  RunResumption saving;
+  saving.save = [](const StateArchive&) {};
+  EXPECT_THROW(run_driven_column(soft, {}, 0.5, saving), std::logic_error);
+}
+
+// An event-driven engine's state that does not hold together (a corrupted file, another build's
+// layout) is refused before any event acts on it, never followed out of the engine's arrays.
+TEST(RunCheckpoint, ACorruptedEventDrivenStateIsRefused) {
+  RunSpec spec;
+  spec.params.N = 40;
+  spec.params.e = 0.1;  // a near-solid: clusters of many particles at every instant
+  spec.params.k = 1e5;
+  spec.engine.kind = EngineKind::Exact;
+  spec.T = 10.0;
+  spec.transient = 5.0;
+  spec.seed = 17;
+  const std::optional<StateArchive> saved = run_until(spec, 500);
+  ASSERT_TRUE(saved.has_value());
+  const StateArchive& engine = saved->at("engine");
+  const auto slots = static_cast<std::size_t>(saved->at("engine").at("slot_kind").get_binary().size());
+  const auto times = unpack_array<FineTime>(engine, "slot_time", slots);
+  const auto kinds = unpack_array<std::uint8_t>(engine, "slot_kind", slots);
+  const auto pairs = unpack_array<int>(engine, "slot_pair", slots);
+  const auto hi = unpack_array<int>(engine, "hi", 40);
+  // The first cluster of two or more with a pending contact end, and an open pair's gap slot.
+  std::size_t cluster = slots;
+  for (std::size_t lo = 0; lo < 40; lo = static_cast<std::size_t>(hi[lo]) + 1)
+    if (hi[lo] > static_cast<int>(lo) && kinds[lo] == 1 && cluster == slots) cluster = lo;
+  ASSERT_LT(cluster, slots) << "no cluster with a pending contact end: the test would show nothing";
+
+  // Each corruption is refused with the line that names it.
+  const auto refused = [&](const char* what, const std::function<void(StateArchive&)>& corrupt) {
+    SCOPED_TRACE(what);
+    StateArchive bad = *saved;
+    corrupt(bad.at("engine"));
+    RunResumption resumption;
+    resumption.resume_from = &bad;
+    try {
+      run_driven_column(spec, {}, 0.5, resumption);
+      ADD_FAILURE() << "resumed";
+    } catch (const StateArchiveError& error) {
+      EXPECT_NE(std::string(error.what()).find(what), std::string::npos) << error.what();
+    }
+  };
+  refused("of another layout", [](StateArchive& e) { e["layout"] = 2; });
+  refused("a cluster's event at a pair outside it", [&](StateArchive& e) {
+    std::vector<int> p = pairs;
+    p[cluster] = hi[cluster] + 5;
+    e["slot_pair"] = pack_array(p);
+  });
+  refused("an event before the engine's time", [&](StateArchive& e) {
+    std::vector<FineTime> t = times;
+    t[cluster] = FineTime(1.0);
+    e["slot_time"] = pack_array(t);
+  });
+  refused("an event at no time", [&](StateArchive& e) {
+    std::vector<FineTime> t = times;
+    t[cluster] = FineTime(std::nan(""));
+    e["slot_time"] = pack_array(t);
+  });
+  refused("a cluster's event at a particle that is not a cluster's lowest", [&](StateArchive& e) {
+    std::vector<FineTime> t = times;
+    std::vector<std::uint8_t> k = kinds;
+    t[cluster + 1] = t[cluster];
+    k[cluster + 1] = k[cluster];
+    e["slot_time"] = pack_array(t);
+    e["slot_kind"] = pack_array(k);
+  });
+  refused("clusters do not tile the chain", [&](StateArchive& e) {
+    std::vector<int> h = hi;
+    h[0] = 45;
+    e["hi"] = pack_array(h);
+  });
+  refused("a cluster formed after the last formation", [](StateArchive& e) { e["formations"] = 0; });
+
+  RunSpec hard = spec;
+  hard.engine.kind = EngineKind::Hard;
+  hard.engine.hard.tc = 1e-2;
+  const std::optional<StateArchive> hard_saved = run_until(hard, 500);
+  ASSERT_TRUE(hard_saved.has_value());
+  StateArchive bad = *hard_saved;
+  std::vector<int> ring = unpack_array<int>(bad.at("engine"), "ring_pair", bad.at("engine").at("ring_pair").get_binary().size() / sizeof(int));
+  ring[0] = 40;
+  bad["engine"]["ring_pair"] = pack_array(ring);
+  RunResumption resumption;
+  resumption.resume_from = &bad;
+  EXPECT_THROW(run_driven_column(hard, {}, 0.5, resumption), StateArchiveError);
 }
 
 // The registry's word and the engines agree: a resumable engine saves and restores, the others

@@ -94,6 +94,7 @@ void HardSphereEngine::save(StateArchive& out) const {
 void HardSphereEngine::restore(const StateArchive& in) {
   const auto n = static_cast<std::size_t>(n_);
   now_ = saved_value<double>(in, "now");
+  if (!std::isfinite(now_)) throw StateArchiveError("saved state: the hard engine's time is not finite");
   u_ = unpack_array<double>(in, "u", n);
   tu_ = unpack_array<double>(in, "tu", n);
   gaps_.t = unpack_array<double>(in, "gap_t", gaps_.t.size());
@@ -111,11 +112,20 @@ void HardSphereEngine::restore(const StateArchive& in) {
   if (ring_next_ >= ring_t_.size() && !ring_t_.empty()) throw StateArchiveError("saved state: the collapse watch's place is out of its ring");
   schedule_.reset(n_, false);
   const std::vector<double> slot_time = unpack_array<double>(in, "slot_time", static_cast<std::size_t>(schedule_.slots()));
-  for (int slot = 0; slot < schedule_.slots(); ++slot) schedule_.set(slot, slot_time[slot]);
+  // Pending times are +inf or not before now, a floor event needs a floor, the collapse watch names
+  // pairs of this chain (-1: the floor): a corrupted state must not send the engine out of its arrays.
+  for (int slot = 0; slot < schedule_.slots(); ++slot) {
+    const double t = slot_time[slot];
+    if (std::isnan(t) || t < now_) throw StateArchiveError("saved state: an event at no time or before the engine's time");
+    if (slot == schedule_.floor() && floor_ == nullptr && t != std::numeric_limits<double>::infinity())
+      throw StateArchiveError("saved state: a floor event without a floor");
+    schedule_.set(slot, t);
+  }
+  for (int pair : ring_pair_)
+    if (pair < -1 || pair >= n_ - 1) throw StateArchiveError("saved state: the collapse watch names a pair outside the chain");
   counters_.steps = saved_value<std::uint64_t>(in, "steps");
   counters_.contact_ends = saved_value<std::uint64_t>(in, "contact_ends");
   counters_.floor_hits = saved_value<std::uint64_t>(in, "floor_hits");
-  if (!std::isfinite(now_)) throw StateArchiveError("saved state: the hard engine's time is not finite");
   state_valid_ = false;
 }
 

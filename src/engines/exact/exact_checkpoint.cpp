@@ -4,6 +4,7 @@
 // reference time with the edges' mode parts there, the schedule (every slot's time and event), the
 // vibrating plate's piece and grounded cluster, the mode cache (a recomputed mode may differ from a
 // cached one in its last bit) and the counts. FineTimes are kept whole (both of their doubles).
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -17,6 +18,10 @@ namespace {
 void put_time(StateArchive& out, const char* key, const FineTime& t) { out[key] = pack_array(std::vector<FineTime>{t}); }
 FineTime saved_time(const StateArchive& in, const char* key) { return unpack_array<FineTime>(in, key, 1)[0]; }
 
+// The archive's layout: the fields below, SlotKind's numbering and ExactCounters' order (saved as
+// raw numbers). Raise it when any of them changes, so that a state of another layout is refused.
+constexpr int kLayout = 1;
+
 // ExactCounters is a row of 64-bit counts.
 constexpr std::size_t kCounts = sizeof(ExactCounters) / sizeof(std::uint64_t);
 static_assert(sizeof(ExactCounters) == kCounts * sizeof(std::uint64_t) && std::is_trivially_copyable_v<ExactCounters>);
@@ -24,6 +29,7 @@ static_assert(sizeof(ExactCounters) == kCounts * sizeof(std::uint64_t) && std::i
 }  // namespace
 
 void ExactEngine::save(StateArchive& out) const {
+  out["layout"] = kLayout;
   put_time(out, "now", now_);
   out["hi"] = pack_array(hi_);
   out["lo_of"] = pack_array(lo_of_);
@@ -90,6 +96,7 @@ void ExactEngine::save(StateArchive& out) const {
 }
 
 void ExactEngine::restore(const StateArchive& in) {
+  if (saved_value<int>(in, "layout") != kLayout) throw StateArchiveError("saved state: the exact engine's fields are of another layout");
   const auto n = static_cast<std::size_t>(n_);
   const std::size_t pairs = n > 1 ? n - 1 : 0;
   now_ = saved_time(in, "now");
@@ -168,8 +175,49 @@ void ExactEngine::restore(const StateArchive& in) {
     }
     lo = static_cast<std::size_t>(hi) + 1;
   }
-  if (!now_.finite()) throw StateArchiveError("saved state: the exact engine's time is not finite");
+  if (!now_.finite() || !std::isfinite(now_.low())) throw StateArchiveError("saved state: the exact engine's time is not finite");
+  check_restored_schedule();
   state_valid_ = false;
+}
+
+// What a saved state must satisfy for the events it schedules to act on existing clusters and pairs
+// (a file corrupted or of another build must not send the engine out of its arrays): every pending
+// time is +inf or not before now; a cluster's event belongs to a cluster's lowest particle and names
+// one of its pairs (of the grounded cluster, -1 for the plate's virtual overlap); a gap's event
+// belongs to an open pair; a floor event needs a floor (a plate's switch, a plate); no generation
+// lies ahead of the count of formations.
+void ExactEngine::check_restored_schedule() const {
+  const auto bad = [](const char* what) { throw StateArchiveError(std::string("saved state: ") + what); };
+  for (int slot = 0; slot < schedule_.slots(); ++slot) {
+    const Time& t = slot_time(slot);
+    if (std::isnan(t.value()) || std::isnan(t.low())) bad("an event at no time");
+    if (t.value() == kInf) continue;
+    if (t < now_) bad("an event before the engine's time");
+    const SlotDetail& d = schedule_.detail(slot);
+    const auto [family, index] = schedule_.slot_of(slot);
+    if (family == EventFamily::Local) {
+      if (lo_of_[index] != index) bad("a cluster's event at a particle that is not a cluster's lowest");
+      const bool grounded = index == 0 && grounded_;
+      const int first = grounded ? -1 : index, end = grounded ? gn_ - 1 : hi_[index];
+      if (d.kind == SlotKind::ContactEnd || d.kind == SlotKind::PassThrough) {
+        if (d.pair < first || d.pair >= end) bad("a cluster's event at a pair outside it");
+        if (d.kind == SlotKind::ContactEnd && !(d.tau >= 0.0 && std::isfinite(d.tau))) bad("a contact's end at no local time");
+      } else if (d.kind != SlotKind::Refresh) {
+        bad("a cluster's event of another family");
+      }
+    } else if (family == EventFamily::Interaction) {
+      if (lo_of_[index] == lo_of_[index + 1]) bad("a gap's event at a closed pair");
+      if (d.kind != SlotKind::ContactBegin && d.kind != SlotKind::Refresh) bad("a gap's event of another family");
+    } else {
+      const bool plate_switch = d.kind == SlotKind::PlateSwitch && plate_ != nullptr;
+      if (floor_ == nullptr || !(d.kind == SlotKind::FloorHit || d.kind == SlotKind::Refresh || plate_switch))
+        bad("a floor event without a floor, or of another family");
+    }
+  }
+  for (int lo = 0; lo < n_; lo = hi_[lo] + 1) {
+    if (generation_[lo] > formations_) bad("a cluster formed after the last formation");
+  }
+  if (cache_.generation > formations_) bad("cached modes of a cluster formed after the last formation");
 }
 
 }  // namespace granchain

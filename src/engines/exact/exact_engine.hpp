@@ -51,7 +51,8 @@ struct ExactOptions {
 };
 
 // The exact engine's own counts: the generic ones, where its prediction work goes, and what
-// below_resolution() and audit() report.
+// below_resolution() and audit() report. Saved as one row in a checkpoint: a change of their order
+// raises kLayout in exact_checkpoint.cpp.
 struct ExactCounters {
   std::uint64_t steps = 0, contact_ends = 0, floor_hits = 0;  // as EngineCounters
   std::uint64_t search_steps = 0;  // root-free steps of the event searches
@@ -110,7 +111,9 @@ class ExactEngine final : public Engine {
   // round-off (grazing contacts whose overlaps are far below the round-off of their neighbours').
   static constexpr double kResolutionSkip = 1e-6;
 
+  // Saved by number in a checkpoint: a change here raises kLayout in exact_checkpoint.cpp.
   enum class SlotKind : std::uint8_t { None, ContactEnd, ContactBegin, FloorHit, PassThrough, Refresh, PlateSwitch };
+  void check_restored_schedule() const;  // exact_checkpoint.cpp
   // What a slot's event is (its time is the schedule's).
   struct SlotDetail {
     SlotKind kind = SlotKind::None;
