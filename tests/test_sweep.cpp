@@ -199,8 +199,9 @@ TEST(SweepRunner, AnUnphysicalPointIsReportedAndTheOthersRun) {
 }
 
 // The ETA credits a running point with the simulated time it has covered: a sweep of one point
-// (a fraction of a second or more) has a finite ETA before the point is done, the point reporting
-// its progress every millisecond.
+// (a fraction of a second or more) has a finite, positive ETA before the point is done, the point
+// reporting its progress every millisecond (0 once the point has covered its whole time, which a
+// report may catch before the point is recorded).
 TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   const auto points = build_sweep_points(definition({{"N", "25"}, {"e", "0.5"}, {"k", "1e7"}, {"T", "400"}}));
   ASSERT_EQ(points.size(), 1u);
@@ -208,13 +209,13 @@ TEST(SweepRunner, EtaCountsTheRunningPointsProgress) {
   runner.set_point_progress_every(0.001);
   std::vector<SweepProgress> reports;
   runner.run(1, [&](const SweepProgress& p) { reports.push_back(p); }, 0.01);
-  bool finite_before_done = false;
+  bool positive_before_done = false;
   for (const SweepProgress& p : reports)
     if (p.done == 0 && std::isfinite(p.eta)) {
-      finite_before_done = true;
-      EXPECT_GT(p.eta, 0.0);
+      positive_before_done = positive_before_done || p.eta > 0.0;
+      EXPECT_GE(p.eta, 0.0);
     }
-  EXPECT_TRUE(finite_before_done) << reports.size() << " reports";
+  EXPECT_TRUE(positive_before_done) << reports.size() << " reports";
   ASSERT_FALSE(reports.empty());
   EXPECT_EQ(reports.back().done, 1u);
   EXPECT_EQ(reports.back().eta, 0.0);
