@@ -127,8 +127,8 @@ Subcommand add_sweep_command(CLI::App& app) {
       ->type_name("DURATION");
   sub_->add_option("--checkpoint-dir", impl.checkpoint_dir,
                    "keep the state of every running point of a resumable engine (" + resumable_engine_list() +
-                       "; not hard spheres after a soft start) in this folder, saved every checkpoint-every seconds and when SIGINT, SIGTERM or the end of "
-                       "--time-limit stops the sweep; a repeat of the command resumes those points where they stopped "
+                       "; not hard spheres after a soft start) in this folder, saved every checkpoint-every seconds and "
+                       "when SIGINT, SIGTERM or the end of --time-limit stops the sweep; a repeat of the command resumes those points where they stopped "
                        "(bit for bit), so one point may run longer than a job")
       ->type_name("DIR");
   sub_->add_flag("--dry-run", impl.dry_run, "list the points (with their keys, seeds and estimated cost), what the store already holds and, with "
