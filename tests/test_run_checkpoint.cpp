@@ -188,7 +188,8 @@ INSTANTIATE_TEST_SUITE_P(EventDrivenEngines, CondensedColumn,
                          ::testing::Values(Case{EngineKind::Exact, DriveKind::Thermal}, Case{EngineKind::Exact, DriveKind::Sine},
                                            Case{EngineKind::Hard, DriveKind::Thermal}),
                          [](const ::testing::TestParamInfo<Case>& info) {
-                           return std::string(engine_name(info.param.engine)) + (info.param.drive == DriveKind::Thermal ? "_thermal" : "_sine");
+                           const char* drive = info.param.drive == DriveKind::Thermal ? "_thermal" : "_sine";
+                           return std::string(engine_name(info.param.engine)) + drive;
                          });
 
 // The resumption depends on the saved state, not only on the spec: a state saved by a run with
@@ -349,7 +350,8 @@ TEST(RunCheckpoint, ACorruptedEventDrivenStateIsRefused) {
   const std::optional<StateArchive> hard_saved = run_until(hard, 500);
   ASSERT_TRUE(hard_saved.has_value());
   StateArchive bad = *hard_saved;
-  std::vector<int> ring = unpack_array<int>(bad.at("engine"), "ring_pair", bad.at("engine").at("ring_pair").get_binary().size() / sizeof(int));
+  const std::size_t watched = bad.at("engine").at("ring_pair").get_binary().size() / sizeof(int);
+  std::vector<int> ring = unpack_array<int>(bad.at("engine"), "ring_pair", watched);
   ring[0] = 40;
   bad["engine"]["ring_pair"] = pack_array(ring);
   RunResumption resumption;

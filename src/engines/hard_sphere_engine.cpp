@@ -109,7 +109,8 @@ void HardSphereEngine::restore(const StateArchive& in) {
   ring_pair_ = unpack_array<int>(in, "ring_pair", ring_pair_.size());
   ring_next_ = saved_value<std::size_t>(in, "ring_next");
   collisions_ = saved_value<std::uint64_t>(in, "collisions");
-  if (ring_next_ >= ring_t_.size() && !ring_t_.empty()) throw StateArchiveError("saved state: the collapse watch's place is out of its ring");
+  if (ring_next_ >= ring_t_.size() && !ring_t_.empty())
+    throw StateArchiveError("saved state: the collapse watch's place is out of its ring");
   schedule_.reset(n_, false);
   const std::vector<double> slot_time = unpack_array<double>(in, "slot_time", static_cast<std::size_t>(schedule_.slots()));
   // Pending times are +inf or not before now, a floor event needs a floor, the collapse watch names

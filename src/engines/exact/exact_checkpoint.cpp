@@ -89,14 +89,15 @@ void ExactEngine::save(StateArchive& out) const {
     out["grounded_search_from"] = g_search_from_;
     out["grounded_W"] = pack_array(std::vector<double>{gW_re_, gW_im_});
     const std::pair<const char*, const std::vector<double>*> arrays[] = {
-        {"grounded_y0", &gy0_},   {"grounded_yd0", &gyd0_}, {"grounded_amp0", &gamp0_}, {"grounded_c_re", &gc_re_},
+        {"grounded_y0", &gy0_},     {"grounded_yd0", &gyd0_},   {"grounded_amp0", &gamp0_}, {"grounded_c_re", &gc_re_},
         {"grounded_c_im", &gc_im_}, {"grounded_P_re", &gP_re_}, {"grounded_P_im", &gP_im_}, {"grounded_P_abs", &gP_abs_}};
     for (const auto& [key, values] : arrays) out[key] = pack_array(*values);
   }
 }
 
 void ExactEngine::restore(const StateArchive& in) {
-  if (saved_value<int>(in, "layout") != kLayout) throw StateArchiveError("saved state: the exact engine's fields are of another layout");
+  if (saved_value<int>(in, "layout") != kLayout)
+    throw StateArchiveError("saved state: the exact engine's fields are of another layout");
   const auto n = static_cast<std::size_t>(n_);
   const std::size_t pairs = n > 1 ? n - 1 : 0;
   now_ = saved_time(in, "now");
@@ -128,7 +129,8 @@ void ExactEngine::restore(const StateArchive& in) {
   const std::vector<int> pair = unpack_array<int>(in, "slot_pair", slots);
   const std::vector<double> tau = unpack_array<double>(in, "slot_tau", slots);
   for (std::size_t s = 0; s < slots; ++s) {
-    if (kind[s] > static_cast<std::uint8_t>(SlotKind::PlateSwitch)) throw StateArchiveError("saved state: an event of no known kind");
+    if (kind[s] > static_cast<std::uint8_t>(SlotKind::PlateSwitch))
+      throw StateArchiveError("saved state: an event of no known kind");
     schedule_.set(static_cast<int>(s), slot_time[s], SlotDetail{static_cast<SlotKind>(kind[s]), pair[s], tau[s]});
   }
 
@@ -158,7 +160,7 @@ void ExactEngine::restore(const StateArchive& in) {
     gW_re_ = W[0];
     gW_im_ = W[1];
     const std::pair<const char*, std::vector<double>*> arrays[] = {
-        {"grounded_y0", &gy0_},   {"grounded_yd0", &gyd0_}, {"grounded_amp0", &gamp0_}, {"grounded_c_re", &gc_re_},
+        {"grounded_y0", &gy0_},     {"grounded_yd0", &gyd0_},   {"grounded_amp0", &gamp0_}, {"grounded_c_re", &gc_re_},
         {"grounded_c_im", &gc_im_}, {"grounded_P_re", &gP_re_}, {"grounded_P_im", &gP_im_}, {"grounded_P_abs", &gP_abs_}};
     for (const auto& [key, values] : arrays) *values = unpack_array<double>(in, key, values->size());
     if (gn_ < 0 || gn_ > n_ || (grounded_ && (gn_ < 1 || hi_[0] != gn_ - 1))) {
@@ -169,9 +171,11 @@ void ExactEngine::restore(const StateArchive& in) {
   // The clusters must tile the chain, each particle naming its cluster's lowest one.
   for (std::size_t lo = 0; lo < n;) {
     const int hi = hi_[lo];
-    if (hi < static_cast<int>(lo) || hi >= n_) throw StateArchiveError("saved state: the exact engine's clusters do not tile the chain");
+    if (hi < static_cast<int>(lo) || hi >= n_)
+      throw StateArchiveError("saved state: the exact engine's clusters do not tile the chain");
     for (int p = static_cast<int>(lo); p <= hi; ++p) {
-      if (lo_of_[p] != static_cast<int>(lo)) throw StateArchiveError("saved state: the exact engine's clusters do not tile the chain");
+      if (lo_of_[p] != static_cast<int>(lo))
+        throw StateArchiveError("saved state: the exact engine's clusters do not tile the chain");
     }
     lo = static_cast<std::size_t>(hi) + 1;
   }
