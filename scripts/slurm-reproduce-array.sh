@@ -14,7 +14,7 @@
 # of each sweep that `granchain reproduce --figure FIGURE --preset PRESET --print-sweeps` lists, in
 # that order, into shards/FIGURE-PRESET-i.db, each sweep with the part of the job's walltime still left
 # (--time-limit: a point starts only if it is predicted to end within it). Points that can save their
-# state (every engine's, but hard spheres after a soft start) keep it in shards/states-FIGURE-PRESET-i
+# state (every engine's) keep it in shards/states-FIGURE-PRESET-i
 # (--checkpoint-dir): they start while time is left, are saved 5 minutes before the limit and go on
 # in the resubmitted task. A sweep that leaves points
 # does not stop the task: later sweeps may hold points that still fit. A sweep whose longest point

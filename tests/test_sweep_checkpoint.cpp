@@ -116,26 +116,30 @@ TEST_F(SweepCheckpointCli, RanksSaveAndResumeThroughTheSameFolder) {
 #endif
 }
 
-// A state that cannot be written (a full 16 KiB tmpfs; mounting needs root, elsewhere the test is
-// skipped) stops the sweep: the point that could not save is not stored, while the point running
-// beside it that keeps no state (hard spheres after a soft start, about 4 s) still is, and the
-// sweep exits 4 saying so.
+// A state that cannot be written (a folder stands where the reference point's checkpoint goes)
+// stops the sweep: the point that could not save is not stored, while the exact engine's point
+// running beside it, which saves its own state, still is, and the sweep exits 4 saying so.
 TEST_F(SweepCheckpointCli, AStateThatCannotBeSavedStopsTheSweepButKeepsWhatFinishes) {
-  fs::create_directories(dir_ / "small");
-  if (std::system(("mount -t tmpfs -o size=16k tmpfs '" + (dir_ / "small").string() + "' 2> /dev/null").c_str()) != 0)
-    GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
-  const CliResult r = run("sweep --engine reference,hard --start-k 1e6 --tc 1e-4 --N 20 --e 0.5 --k 1e10 --T 6e4 --transient 20 "
-                          "--seed 3 -q --threads 2 --db s.db --checkpoint-dir small --checkpoint-every 1");
-  const std::size_t left = saved_states("small");
-  std::system(("umount '" + (dir_ / "small").string() + "'").c_str());
+  SweepDefinition def;
+  def.raw = {{"engine", RawValue("reference,exact")}, {"N", RawValue("20")}, {"e", RawValue("0.5")}, {"k", RawValue("1e10")},
+             {"T", RawValue("400")}, {"transient", RawValue("20")}};
+  def.base_seed = 3;
+  const std::vector<SweepPoint> points = build_sweep_points(def);
+  ASSERT_EQ(points.size(), 2u);
+  const SweepPoint& reference = points[0].spec.engine.kind == EngineKind::Reference ? points[0] : points[1];
+  const SweepCheckpoints states((dir_ / "states").string(), 1);
+  fs::create_directories(states.path(reference));
+  const CliResult r = run("sweep --engine reference,exact --N 20 --e 0.5 --k 1e10 --T 400 --transient 20 --seed 3 -q --threads 2 "
+                          "--db s.db --checkpoint-dir states --checkpoint-every 1");
   EXPECT_EQ(r.exit_code, 4) << r.err;
   EXPECT_NE(r.err.find("--checkpoint-dir: cannot write"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("the sweep stopped, every point stored so far is complete and the states saved before are kept in small"),
+  EXPECT_NE(r.err.find("the sweep stopped, every point stored so far is complete and the states saved before are kept in states"),
             std::string::npos)
       << r.err;
-  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'hard'"), 1);
+  EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'exact'"), 1);
   EXPECT_EQ(query(dir_ / "s.db", "SELECT count(*) FROM runs WHERE engine = 'reference'"), 0);
-  EXPECT_EQ(left, 0u);  // no half-written state
+  EXPECT_EQ(saved_states("states"), 1u);  // the folder in the reference point's place; the exact point's state is spent
+  EXPECT_TRUE(fs::is_directory(states.path(reference)));
 }
 
 // Bad input: one line naming the parameter and what is valid, exit code 2, nothing written.
@@ -144,9 +148,6 @@ TEST_F(SweepCheckpointCli, WhatCannotKeepCheckpointsIsRefused) {
     std::string args, expect;
   };
   for (const Bad& b : std::vector<Bad>{
-           {"--engine hard --start-k 1e4 --transient 1 --checkpoint-dir states",
-            "--checkpoint-dir = states: no point of this sweep can save its state; valid: points of --engine exact, reference, "
-            "reference-located, hard without a soft start (--start-k)"},
            {"--engine reference --checkpoint-every 60", "--checkpoint-every = 60: it acts only with --checkpoint-dir DIR"},
            {"--engine reference --checkpoint-dir states --checkpoint-every 0.5", "1 <= checkpoint-every <= 1e7"},
            {"--engine reference --checkpoint-dir ''", "--checkpoint-dir: the path is empty"},
@@ -168,36 +169,32 @@ TEST(SweepCheckpoints, SavedPointsGoFirstAndNeedNotFitTheLimit) {
   fs::remove_all(dir);
   SweepDefinition def;
   def.raw = {{"N", RawValue("3")}, {"e", RawValue("0.5,0.6,0.7")}, {"k", RawValue("1e4")}, {"T", RawValue("20")},
-             {"engine", RawValue("reference,hard")}, {"start-k", RawValue("1e3")}};
+             {"engine", RawValue("reference,exact")}};
   std::vector<SweepPoint> points = build_sweep_points(def);
   ASSERT_EQ(points.size(), 6u);
   for (SweepPoint& p : points) p.cost = 1e6;
   SweepCheckpoints states(dir.string(), 600);
   states.create_folder();
   std::vector<std::size_t> all = {0, 1, 2, 3, 4, 5};
-  std::size_t reference_count = 0;
-  for (std::size_t i : all) reference_count += SweepCheckpoints::covers(points[i]) ? 1 : 0;
-  ASSERT_EQ(reference_count, 3u);
+  for (std::size_t i : all) EXPECT_TRUE(SweepCheckpoints::covers(points[i])) << points[i].key;  // every engine saves
   EXPECT_EQ(points_longer_than(points, all, 3600.0).size(), 6u);
-  EXPECT_EQ(points_longer_than(points, all, 3600.0, &states).size(), 3u);  // the soft-started hard spheres' 
+  EXPECT_EQ(points_longer_than(points, all, 3600.0, &states).size(), 0u);
 
-  // A saved state for the last reference point in build order: it is handed out first.
-  std::size_t last_reference = 0;
-  for (std::size_t i : all)
-    if (SweepCheckpoints::covers(points[i])) last_reference = i;
-  std::ofstream(states.path(points[last_reference])) << "x";
-  EXPECT_TRUE(states.has_saved(points[last_reference]));
-  EXPECT_THROW(states.saved(points[last_reference]), CheckpointError);  // not a checkpoint
+  // A saved state for the last point in build order: it is handed out first.
+  const std::size_t last = all.back();
+  std::ofstream(states.path(points[last])) << "x";
+  EXPECT_TRUE(states.has_saved(points[last]));
+  EXPECT_THROW(states.saved(points[last]), CheckpointError);  // not a checkpoint
   SweepRunner runner(points, all, [](const SweepPoint&, const RunResult*, const std::string&, const InelasticCollapseError*) {});
   runner.set_checkpoints(&states);
   const auto first = runner.next();
   ASSERT_TRUE(first.has_value());
-  EXPECT_EQ(*first, last_reference);
+  EXPECT_EQ(*first, last);
   // A point abandoned unsaved goes back to the queue and is handed out again.
   runner.put_back(*first);
   EXPECT_EQ(runner.next(), first);
   EXPECT_EQ(runner.not_started(), 5u);
-  EXPECT_TRUE(states.remove(points[last_reference]));
-  EXPECT_FALSE(states.has_saved(points[last_reference]));
+  EXPECT_TRUE(states.remove(points[last]));
+  EXPECT_FALSE(states.has_saved(points[last]));
   fs::remove_all(dir);
 }

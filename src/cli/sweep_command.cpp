@@ -127,7 +127,7 @@ Subcommand add_sweep_command(CLI::App& app) {
       ->type_name("DURATION");
   sub_->add_option("--checkpoint-dir", impl.checkpoint_dir,
                    "keep the state of every running point of a resumable engine (" + resumable_engine_list() +
-                       "; not hard spheres after a soft start) in this folder, saved every checkpoint-every seconds and "
+                       ") in this folder, saved every checkpoint-every seconds and "
                        "when SIGINT, SIGTERM or the end of --time-limit stops the sweep; a repeat of the command resumes those points where they stopped "
                        "(bit for bit), so one point may run longer than a job")
       ->type_name("DIR");
@@ -208,8 +208,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     if (given("--checkpoint-dir")) {
       if (impl.checkpoint_dir.empty()) throw InputError("--checkpoint-dir: the path is empty; give a folder name");
       if (std::none_of(points.begin(), points.end(), [](const SweepPoint& p) { return SweepCheckpoints::covers(p); }))
-        throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep can save its state; valid: points of --engine {} "
-                                     "without a soft start (--start-k)",
+        throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep can save its state; valid: points of --engine {}",
                                      impl.checkpoint_dir, resumable_engine_list()));
       const double every = checkpoint_every ? read_real(*find_parameter(run_parameters(), "checkpoint-every"), *checkpoint_every)
                                             : RunOptions{}.checkpoint_every;

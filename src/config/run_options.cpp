@@ -151,7 +151,7 @@ const std::vector<Definition>& definitions() {
     d.push_back({{"checkpoint", ParameterType::Path, "",
                   "keep the run's state in this file as it goes (every checkpoint-every seconds, and when SIGINT or SIGTERM "
                   "stops it) and resume from it where it exists; removed once the run is stored or written (engines: " +
-                      resumable_engine_list() + "; not hard spheres after a soft start)",
+                      resumable_engine_list() + ")",
                   "a file name", "none", kUseRun, EngineScope::Any, false, "", {}},
                  false, {}, {},
                  [](RunOptions& o, const Parameter& q, const RawValue& v) {
@@ -319,12 +319,9 @@ void check_checkpoint(const RunOptions& o, const std::map<std::string, RawValue>
   const EngineInfo& engine = engine_info(o.spec.engine.kind);
   if (!can_resume(o.spec)) {
     const RawValue& given = raw.at("checkpoint");
-    if (!engine.resumable)
-      throw InputError(fmt::format("--checkpoint = {}{}: the {} engine cannot save its state; valid: --engine {}", given.text(),
-                                   from_where(given), engine.name, resumable_engine_list()));
-    throw InputError(fmt::format("--checkpoint = {}{}: a run with a soft start (start-k = {}) cannot save its state (the switch "
-                                 "of engines is not saved); valid: start-k = 0",
-                                 given.text(), from_where(given), o.spec.engine.start_k));
+    throw InputError(fmt::format("--checkpoint = {}{}: the {} engine{} cannot save its state; valid: --engine {}", given.text(),
+                                 from_where(given), engine.name, o.spec.engine.start_k > 0 ? " with its soft start" : "",
+                                 resumable_engine_list()));
   }
 }
 

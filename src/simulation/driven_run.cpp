@@ -30,7 +30,12 @@ double thread_cpu_seconds() {
 }
 }  // namespace
 
-bool can_resume(const RunSpec& spec) { return engine_info(spec.engine.kind).resumable && !(spec.engine.start_k > 0); }
+bool can_resume(const RunSpec& spec) {
+  const EngineInfo& engine = engine_info(spec.engine.kind);
+  // A soft start runs the transient on the default engine (EngineChoice{}), then the hard spheres.
+  const bool soft_start = engine.hard_spheres && spec.engine.start_k > 0;
+  return engine.resumable && (!soft_start || engine_info(EngineChoice{}.kind).resumable);
+}
 
 SavedRunPlace saved_run_place(const StateArchive& state) {
   return {saved_value<double>(state, "t"), saved_value<bool>(state, "in_window")};
@@ -86,6 +91,7 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
   EventFanOut window(soft_contacts ? EventFanOut{&counter, &contacts} : EventFanOut{&counter});
 
   EngineCounters before_switch{};  // the soft engine's counts, for a soft start's totals
+  bool hard_running = false;        // a soft start's hard spheres have taken over
   // Sample j's time (j = 0: the window's start); the last ends exactly at t1.
   const auto sample_time = [&](std::int64_t j) { return j > 0 ? std::min(t1, t0 + static_cast<double>(j) * dt_s) : t0; };
 
@@ -112,6 +118,14 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     cpu_before = saved_value<double>(a, "cpu_seconds");
     for (const char* part : {"engine", "floor", "counter", "sampler", "contacts"})
       if (!a.contains(part)) throw StateArchiveError(fmt::format("saved state: no part '{}'", part));
+    if (soft_start) {  // saved in the window: the hard spheres had taken over, with the soft engine's counts
+      const std::vector<std::uint64_t> counts = unpack_array<std::uint64_t>(a, "before_switch", 3);
+      before_switch = {counts[0], counts[1], counts[2]};
+      if (in_window) {
+        engine = make_engine(spec.engine, spec.params, hard_sphere_start(initial, spec.params, *floor), floor.get());
+        hard_running = true;
+      }
+    }
     engine->restore(a.at("engine"));
     floor->restore(a.at("floor"));
     counter.restore(a.at("counter"));
@@ -131,6 +145,8 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
     a["bins"] = bins;
     a["wall_seconds"] = wall_before + seconds_since(wall0);
     a["cpu_seconds"] = cpu_before + (thread_cpu_seconds() - cpu0);
+    if (soft_start) a["before_switch"] = pack_array(std::vector<std::uint64_t>{before_switch.steps, before_switch.contact_ends,
+                                                                                before_switch.floor_hits});
     engine->save(a["engine"]);
     floor->save(a["floor"]);
     counter.save(a["counter"]);
@@ -172,9 +188,10 @@ RunResult run_driven_column(const RunSpec& spec, const ProgressCallback& progres
       report(t, true);
       save_if_due();
     }
-    if (soft_start) {
+    if (soft_start && !hard_running) {
       before_switch = engine->counters();
       engine = make_engine(spec.engine, spec.params, hard_sphere_start(engine->state(), spec.params, *floor), floor.get());
+      hard_running = true;
     }
     in_window = true;
     for (std::int64_t j = j_done + 1; j <= n_samples; ++j) {

@@ -98,8 +98,9 @@ struct SavedRunPlace {
   bool in_window = false;
 };
 SavedRunPlace saved_run_place(const StateArchive& state);
-// Whether a run of this spec can be saved and resumed: its engine is resumable (EngineInfo) and
-// it has no soft start (the switch of engines is not saved).
+// Whether a run of this spec can be saved and resumed: its engine is resumable (EngineInfo), and
+// with a soft start the soft engine too (a state saved in the transient is the soft engine's, one
+// saved in the window the hard spheres', with the soft engine's counts).
 bool can_resume(const RunSpec& spec);
 
 // The hard spheres' start from a soft column's state: centres raised from the bottom up until no

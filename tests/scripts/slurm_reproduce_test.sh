@@ -24,7 +24,7 @@ if [ "$1" = reproduce ]; then
 fi
 keeps=1
 [[ " $* " == *" --start-k "* ]] && keeps=0
-if [[ " $* " == *" --checkpoint-dir "* && $keeps -eq 0 ]]; then  # hard spheres after a soft start keep no state
+if [[ " $* " == *" --checkpoint-dir "* && $keeps -eq 0 ]]; then  # a sweep whose points keep no state (the fake's --start-k)
   echo "granchain: error: --checkpoint-dir = x: no point of this sweep can save its state" >&2
   exit 2
 fi
