@@ -11,8 +11,13 @@
 
 #include "bindings.hpp"
 #include "config/input_error.hpp"
+#include "config/run_key.hpp"
 #include "config/run_options.hpp"
+#include "model/state_archive.hpp"
+#include "simulation/cancellation.hpp"
+#include "store/output_file.hpp"
 #include "store/results_store.hpp"
+#include "store/run_checkpoint.hpp"
 #include "store/run_json.hpp"
 #include "simulation/run_verdicts.hpp"
 #include "version.hpp"
@@ -169,11 +174,17 @@ py::dict run_result_dict(const RunResult& r, const std::string& json_text, const
 namespace {
 
 // Called about every half second of wall time from inside the run (without the GIL): takes the
-// GIL, lets Ctrl-C (KeyboardInterrupt) and an exception from the user's callback end the run.
-ProgressCallback progress_callback(const std::optional<py::object>& user) {
-  return [user](const RunProgress& p) {
+// GIL, lets Ctrl-C (KeyboardInterrupt) and an exception from the user's callback end the run. With
+// a checkpoint (save_on_interrupt) Ctrl-C cancels the run, which saves its state, and the
+// KeyboardInterrupt is raised after that.
+ProgressCallback progress_callback(const std::optional<py::object>& user, bool save_on_interrupt = false) {
+  return [user, save_on_interrupt](const RunProgress& p) {
     py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (PyErr_CheckSignals() != 0) {
+      if (!save_on_interrupt || !PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+      PyErr_Clear();  // raised again, saying where the state is, once it is saved
+      throw RunCancelled{};
+    }
     if (!user) return;
     py::dict d;
     d["t"] = p.t;
@@ -184,6 +195,11 @@ ProgressCallback progress_callback(const std::optional<py::object>& user) {
     d["wall_seconds"] = p.wall_seconds;
     (*user)(d);
   };
+}
+
+// A UserWarning (an error where warnings are turned into errors).
+void warn(const std::string& message) {
+  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
 }
 
 py::dict run_keywords(const py::kwargs& kwargs) {
@@ -202,6 +218,7 @@ py::dict run_keywords(const py::kwargs& kwargs) {
   if (audit && !audit->is_none() && !PyBool_Check(audit->ptr()))
     throw InputError(fmt::format("--audit: audit = {} is not True or False", std::string(py::repr(*audit))));
   if (audit && !audit->is_none() && audit->cast<bool>()) request_audit(opts);
+  check_outputs({{"--db", opts.use_db ? opts.db_path : ""}, {"--checkpoint", opts.checkpoint_path}}, {});  // not one file for both
   if (opts.use_db) {
     try {
       ResultsStore::preflight(opts.db_path);
@@ -219,6 +236,8 @@ py::dict run_keywords(const py::kwargs& kwargs) {
       stored = ResultsStore(opts.db_path).read_back_run(opts.spec);
     }
     if (stored) {
+      if (!opts.checkpoint_path.empty() && remove_spent_run_checkpoint(opts.checkpoint_path, point_key(opts.spec)))
+        warn(fmt::format("checkpoint {} held the state of this stored run; it was removed", opts.checkpoint_path));
       if (PyErr_WarnEx(PyExc_UserWarning,
                    fmt::format("run {} of {} is this run already (the same parameters and seed = {}, so the same "
                                "trajectory); it was read back, not run or stored again; for an independent replica "
@@ -229,18 +248,62 @@ py::dict run_keywords(const py::kwargs& kwargs) {
         throw py::error_already_set();  // warnings turned into errors
       py::dict d = run_result_dict(stored->result, stored->json.dump(2), opts.db_path, stored->id);
       d["reused"] = true;
+      d["resumed_at"] = py::none();
       return d;
     }
   }
 
-  const ProgressCallback cb = progress_callback(progress);
+  // With a checkpoint the run resumes from it where it holds this run's state, saves its state
+  // every checkpoint_every seconds and on Ctrl-C, and removes it once the result is stored or returned.
+  const bool checkpointing = !opts.checkpoint_path.empty();
+  const std::string key = checkpointing ? point_key(opts.spec) : "";
+  std::optional<RunCheckpoint> checkpoint;
+  std::optional<double> resumed_at;
+  if (checkpointing) {
+    try {
+      checkpoint = read_run_checkpoint_of(opts.checkpoint_path, key);
+      if (checkpoint) resumed_at = saved_run_place(checkpoint->state).t;
+    } catch (const std::exception& e) {  // CheckpointError, StateArchiveError: bad input, nothing run
+      throw InputError(fmt::format("--checkpoint: {}; nothing was run or written", e.what()));
+    }
+    if (checkpoint && checkpoint->written_by != code_version())
+      warn(fmt::format("checkpoint {} was saved by granchain {}, this is {}: the result is the uninterrupted run's bit for bit only "
+                       "if the engine and observers are unchanged",
+                       opts.checkpoint_path, checkpoint->written_by, code_version()));
+  }
+  const ProgressCallback cb = progress_callback(progress, checkpointing);
+  RunResumption resumption;
+  SavedRunPlace saved{};
+  if (checkpointing) {
+    resumption.resume_from = checkpoint ? &checkpoint->state : nullptr;
+    resumption.every = opts.checkpoint_every;
+    resumption.save = [&](const StateArchive& state) {
+      write_run_checkpoint(opts.checkpoint_path, {key, code_version(), state}, "checkpoint");
+      saved = saved_run_place(state);
+    };
+  }
   RunResult result;
   std::string json_text;
   std::int64_t run_id = 0;
   bool reused = false;
+  bool cancelled = false;
   {
     py::gil_scoped_release nogil;
-    result = run_driven_column(opts.spec, cb, 0.5);
+    try {
+      result = run_driven_column(opts.spec, cb, 0.5, resumption);
+    } catch (const RunCancelled&) {
+      cancelled = true;
+    }
+  }
+  if (cancelled) {  // Ctrl-C with a checkpoint: the state is saved; the KeyboardInterrupt says where
+    PyErr_SetString(PyExc_KeyboardInterrupt,
+                    fmt::format("the run's state at t = {:.6g} of {:.6g} is saved in {}; the same call resumes it (nothing was stored)",
+                                saved.t, opts.spec.transient + opts.spec.T, opts.checkpoint_path)
+                        .c_str());
+    throw py::error_already_set();
+  }
+  {
+    py::gil_scoped_release nogil;
     nlohmann::json j = run_result_to_json(result);
     if (opts.use_db) {
       ResultsStore store(opts.db_path);
@@ -254,8 +317,15 @@ py::dict run_keywords(const py::kwargs& kwargs) {
     }
     json_text = j.dump(2);
   }
+  // The result is whole (and stored): the checkpoint is spent.
+  if (checkpointing) {
+    std::error_code ec;
+    std::filesystem::remove(opts.checkpoint_path, ec);
+    if (ec) warn(fmt::format("checkpoint {} could not be removed: {}", opts.checkpoint_path, ec.message()));
+  }
   py::dict d = run_result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
   d["reused"] = reused;
+  d["resumed_at"] = resumed_at ? py::object(py::float_(*resumed_at)) : py::object(py::none());
   return d;
 }
 

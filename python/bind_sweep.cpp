@@ -13,6 +13,7 @@
 #include "config/input_error.hpp"
 #include "config/run_options.hpp"
 #include "config/value_list.hpp"
+#include "store/output_file.hpp"
 #include "provenance.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
@@ -47,6 +48,8 @@ struct SweepRequest {
   std::string db;  // "": nothing stored
   int threads = 0;
   std::optional<py::object> progress;
+  std::optional<std::string> checkpoint_dir;  // as `sweep --checkpoint-dir`
+  std::optional<RawValue> checkpoint_every;
 };
 
 SweepRequest sweep_request_checked(const py::kwargs& kwargs) {
@@ -70,13 +73,13 @@ SweepRequest sweep_request_checked(const py::kwargs& kwargs) {
   if (const auto r = integer("replicas", 1, 1000000)) q.def.replicas = static_cast<int>(*r);
   if (const auto t = integer("threads", 1, 1024)) q.threads = static_cast<int>(*t);
   if (const auto s = integer("seed", 0, 9223372036854775807LL)) q.def.base_seed = static_cast<std::uint64_t>(*s);
-  if (args.count("checkpoint-every"))
-    throw InputError("checkpoint_every: the Python sweep keeps no checkpoints (each point stored is kept); valid: `granchain sweep "
-                     "--checkpoint-dir DIR --checkpoint-every S` on the command line");
+  if (const auto dir = take(args, "checkpoint-dir")) q.checkpoint_dir = path_text(*dir, "checkpoint_dir", "folder name");
+  if (const auto every = take(args, "checkpoint-every"))
+    q.checkpoint_every = keyword_value(*every, find_parameter(run_parameters(), "checkpoint-every"));
   for (const auto& [name, value] : args) {
     const Parameter* p = find_parameter(run_parameters(), name);
     if (p == nullptr || !(p->uses & kUseSweep))
-      throw InputError(fmt::format("--{}: sweep takes no such parameter; valid: {}, replicas, threads, progress", name,
+      throw InputError(fmt::format("--{}: sweep takes no such parameter; valid: {}, replicas, threads, progress, checkpoint-dir", name,
                                    parameter_names(run_parameters(), kUseSweep)));
     q.def.raw[name] = is_grid(name) ? axis_value(value, p) : keyword_value(value, p);
   }
@@ -99,11 +102,23 @@ py::dict progress_dict(const SweepProgress& p, std::size_t reused) {
 py::dict sweep(const py::kwargs& kwargs) {
   SweepRequest q;
   std::vector<SweepPoint> points;
+  std::unique_ptr<SweepCheckpoints> checkpoints;
   try {
     q = sweep_request_checked(kwargs);
     points = build_sweep_points(q.def);
+    if (q.checkpoint_dir) {
+      checkpoints = make_sweep_checkpoints(*q.checkpoint_dir, q.checkpoint_every ? &*q.checkpoint_every : nullptr, points);
+      checkpoints->announce_resumes(false);  // counted in the result's `resumed` instead
+      try {
+        checkpoints->create_folder();
+      } catch (const OutputError& e) {
+        throw InputError(e.what());  // as the CLI: bad input, nothing run
+      }
+    } else if (q.checkpoint_every) {
+      throw InputError(fmt::format("--checkpoint-every = {}: it acts only with --checkpoint-dir DIR", q.checkpoint_every->text()));
+    }
   } catch (const InputError& e) {
-    throw InputError(keyword_message(e.what(), run_parameters(), {"replicas", "threads", "progress"}));
+    throw InputError(keyword_message(e.what(), run_parameters(), {"replicas", "threads", "progress", "checkpoint-dir"}));
   }
   set_parallelism(q.threads, 1);
 
@@ -143,6 +158,12 @@ py::dict sweep(const py::kwargs& kwargs) {
     }
   }
   std::size_t n_reused = static_cast<std::size_t>(std::count(reused.begin(), reused.end(), 1));
+  std::size_t resumed = 0;  // points that go on from a saved state
+  if (checkpoints) {
+    py::gil_scoped_release nogil;
+    remove_spent_states(*checkpoints, points, todo);
+    for (std::size_t i : todo) resumed += checkpoints->has_saved(points[i]) ? 1 : 0;
+  }
 
   std::size_t inserted = 0;
   const PointSink sink = [&](const SweepPoint& p, const RunResult* r, const std::string& error, const InelasticCollapseError* collapse) {
@@ -165,7 +186,8 @@ py::dict sweep(const py::kwargs& kwargs) {
   SweepRunner runner(points, todo, sink);
   runner.set_point_progress_every(0.2);  // a cancel reaches a running point within about this
   std::atomic<bool> cancel{false};
-  runner.watch(&cancel);
+  runner.watch(&cancel);  // with checkpoints the running points save their states and stop
+  if (checkpoints) runner.set_checkpoints(checkpoints.get());
   std::function<void()> progress;
   if (q.progress) progress = [&] { (*q.progress)(progress_dict(runner.progress(), n_reused)); };
   std::optional<py::error_already_set> stop = run_interruptible(cancel, [&] { runner.run(q.threads); }, progress);
@@ -197,6 +219,9 @@ py::dict sweep(const py::kwargs& kwargs) {
   d["base_seed"] = q.def.base_seed;
   d["interrupted"] = stop.has_value();
   d["not_run"] = points.size() - out.size() - failures.size();
+  d["checkpoint_dir"] = checkpoints ? py::object(py::str(checkpoints->dir())) : py::object(py::none());
+  d["resumed"] = resumed;
+  d["saved"] = runner.saved();
   return d;
 }
 

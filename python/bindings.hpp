@@ -42,7 +42,7 @@ std::map<std::string, py::object> flag_arguments(const py::kwargs& kwargs);
 std::optional<py::object> take(std::map<std::string, py::object>& args, const std::string& name);
 
 // A path argument (str or os.PathLike) as text; ValueError naming `option` otherwise.
-std::string path_text(const py::handle& value, const std::string& option);
+std::string path_text(const py::handle& value, const std::string& option, const std::string& what = "file name");
 
 // Runs `work` on a thread of its own without the GIL while the calling thread wakes every 0.1 s
 // to look for Ctrl-C and, every `progress_every` seconds, calls `progress` (if set). A

@@ -108,7 +108,7 @@ std::optional<py::object> take(std::map<std::string, py::object>& args, const st
   return v;
 }
 
-std::string path_text(const py::handle& value, const std::string& option) {
+std::string path_text(const py::handle& value, const std::string& option, const std::string& what) {
   py::object p = py::reinterpret_borrow<py::object>(value);
   if (!PyUnicode_Check(p.ptr())) {
     try {
@@ -120,7 +120,7 @@ std::string path_text(const py::handle& value, const std::string& option) {
     if (!PyUnicode_Check(p.ptr())) p = p.attr("decode")();
   }
   const std::string text = p.cast<std::string>();
-  if (text.empty()) throw py::value_error(fmt::format("{}: the path is empty; give a file name", option));
+  if (text.empty()) throw py::value_error(fmt::format("{}: the path is empty; give a {}", option, what));
   return text;
 }
 

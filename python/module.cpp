@@ -2,11 +2,13 @@
 // C++ errors become Python exceptions: bad input (InputError) ValueError with the CLI's one-line
 // message (run and collapse name parameters by keyword: keyword_message); an unphysical simulation
 // granchain.UnphysicalStateError (a RuntimeError, the CLI's exit 3); a store that cannot be written
-// granchain.StoreError (an OSError, the CLI's exit 4).
+// granchain.StoreError (an OSError, the CLI's exit 4); a file that cannot be written (a checkpoint)
+// OSError.
 #include "analysis/estimate_format.hpp"
 #include "bindings.hpp"
 #include "config/input_error.hpp"
 #include "engines/engine.hpp"
+#include "store/output_file.hpp"
 #include "store/results_store.hpp"
 #include "provenance.hpp"
 #include "version.hpp"
@@ -35,6 +37,8 @@ PYBIND11_MODULE(_granchain, m) {
       PyErr_SetString(unphysical, e.what());
     } catch (const StoreError& e) {
       PyErr_SetString(store_error, e.what());
+    } catch (const OutputError& e) {  // a file that cannot be written (a checkpoint): the CLI's exit 4
+      PyErr_SetString(PyExc_OSError, e.what());
     }
   });
 

@@ -89,6 +89,10 @@ def run(**kwargs):
     db=PATH stores the run in that results store (created if missing), as the CLI does without
     --no-db; audit=True is --audit; progress=callable(dict) is called about every 0.5 s with t,
     t_total, in_transient, steps, events and wall_seconds. Ctrl-C stops a run (KeyboardInterrupt).
+    checkpoint=PATH (``run --checkpoint``): the run keeps its state in PATH, saved every
+    checkpoint_every seconds (600) and on Ctrl-C (the KeyboardInterrupt then says where); the same
+    call resumes it to the uninterrupted result bit for bit (resumed_at: the time it went on from)
+    and removes PATH once the result is returned (and stored).
     Raises ValueError (bad input, the CLI's message), UnphysicalStateError, StoreError.
     """
     run.__signature__.bind(**kwargs)  # TypeError for a keyword that is no parameter
@@ -210,6 +214,9 @@ def sweep(**kwargs):
     raised once as granchain.QualityWarning with the number of points. Ctrl-C stops the sweep
     within about a second: running points are abandoned (neither stored nor returned) and
     granchain.Interrupted is raised, its .result the SweepResult of the points that finished.
+    checkpoint_dir=DIR (``sweep --checkpoint-dir``): each running point keeps its state in DIR,
+    saved every checkpoint_every seconds (600) and on Ctrl-C, and the next call resumes it to the
+    uninterrupted result bit for bit (.resumed, .saved count them).
     Raises ValueError for bad input (the CLI's message), StoreError.
     """
     sweep.__signature__.bind(**kwargs)
@@ -220,15 +227,17 @@ def sweep(**kwargs):
         _warnings.warn(f"point {key} turned unphysical and was not stored: {reason}", QualityWarning, stacklevel=2)
     if result.interrupted:
         raise Interrupted(result, f"{len(result)} of {result.points} points finished"
-                          + (f", those run now stored in {result.db}" if result.db else ""))
+                          + (f", those run now stored in {result.db}" if result.db else "")
+                          + (f"; the states of {result.saved} running points are saved in {result.checkpoint_dir}"
+                             " (call again to resume them)" if result.saved else ""))
     _warn_quality(result)
     return result
 
 
-sweep.__signature__ = _signature([p for p in run_parameters() if p["name"] not in ("db", "audit")],
-                                 [("db", None), ("replicas", None), ("threads", None), ("progress", None)])
-sweep.__doc__ += _table_doc("the flags of ``granchain sweep``; lists for the grid parameters",
-                            [p for p in run_parameters() if p["name"] != "db"])
+_sweep_table = [p for p in run_parameters() if p["name"] not in ("db", "audit", "checkpoint")]
+sweep.__signature__ = _signature(_sweep_table, [("db", None), ("replicas", None), ("threads", None), ("progress", None),
+                                                ("checkpoint_dir", None)])
+sweep.__doc__ += _table_doc("the flags of ``granchain sweep``; lists for the grid parameters", _sweep_table)
 
 
 def trace(**kwargs):

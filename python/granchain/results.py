@@ -189,7 +189,9 @@ class SweepResult(list):
     """The points of a sweep() in the order of the command's table (engine, N, T0, drive, A, omega,
     k, T, e, replica), each a RunResult; ``failed`` lists (key, reason) of points that turned unphysical,
     ``db`` the store (or None), ``stored_now`` and ``reused`` how many points were run and stored
-    now and read back, ``interrupted`` whether Ctrl-C stopped it."""
+    now and read back, ``interrupted`` whether Ctrl-C stopped it; with ``checkpoint_dir``,
+    ``resumed`` how many points went on from a saved state and ``saved`` how many were stopped with
+    their states saved there."""
 
     def __init__(self, results, info):
         super().__init__(results)
@@ -200,6 +202,9 @@ class SweepResult(list):
         self.points = info.get("points", len(results))
         self.interrupted = bool(info.get("interrupted", False))
         self.base_seed = info.get("base_seed")
+        self.checkpoint_dir = info.get("checkpoint_dir")
+        self.resumed = info.get("resumed", 0)
+        self.saved = info.get("saved", 0)
 
     def table(self):
         """One row per point: parameters and scalar results, as a numpy structured array."""

@@ -140,12 +140,8 @@ int report_stored_run(const RunFlags& impl, const RunOptions& opts, const Result
 // that it resumes, and from which build. Throws CheckpointError for a checkpoint of another run
 // (so that no state goes on under another run's name), StateArchiveError for one without its place.
 std::optional<RunCheckpoint> checkpoint_to_resume(const RunOptions& opts, const std::string& key) {
-  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(opts.checkpoint_path);
+  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint_of(opts.checkpoint_path, key);
   if (!checkpoint) return checkpoint;
-  if (checkpoint->key != key) {
-    throw CheckpointError(fmt::format("'{}' holds the state of another run ({}); give another file, or delete it to start this run anew",
-                                      opts.checkpoint_path, checkpoint->key));
-  }
   const SavedRunPlace place = saved_run_place(checkpoint->state);
   fmt::print(stderr, "granchain: resuming from --checkpoint {} at t = {:.6g} of {:.6g} ({}; saved by granchain {}{})\n",
              opts.checkpoint_path, place.t, opts.spec.transient + opts.spec.T, place.in_window ? "measuring" : "transient",
@@ -159,12 +155,8 @@ std::optional<RunCheckpoint> checkpoint_to_resume(const RunOptions& opts, const 
 // A checkpoint of a run found stored already (its process stored it and was stopped before removing
 // the checkpoint) is spent: removed, saying so. Anything else at that path is left as it is.
 void remove_spent_checkpoint(const RunOptions& opts, const std::string& key) {
-  try {
-    const std::optional<RunCheckpoint> left = read_run_checkpoint(opts.checkpoint_path);
-    if (left && left->key == key && std::filesystem::remove(opts.checkpoint_path))
-      fmt::print(stderr, "granchain: --checkpoint {} held the state of this stored run; it was removed\n", opts.checkpoint_path);
-  } catch (const std::exception&) {  // not a checkpoint of this run
-  }
+  if (remove_spent_run_checkpoint(opts.checkpoint_path, key))
+    fmt::print(stderr, "granchain: --checkpoint {} held the state of this stored run; it was removed\n", opts.checkpoint_path);
 }
 
 int execute_run(const std::shared_ptr<RunFlags>& impl_) {

@@ -206,13 +206,7 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
     points = build_sweep_points(def);
     if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
     if (given("--checkpoint-dir")) {
-      if (impl.checkpoint_dir.empty()) throw InputError("--checkpoint-dir: the path is empty; give a folder name");
-      if (std::none_of(points.begin(), points.end(), [](const SweepPoint& p) { return SweepCheckpoints::covers(p); }))
-        throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep can save its state; valid: points of --engine {}",
-                                     impl.checkpoint_dir, resumable_engine_list()));
-      const double every = checkpoint_every ? read_real(*find_parameter(run_parameters(), "checkpoint-every"), *checkpoint_every)
-                                            : RunOptions{}.checkpoint_every;
-      checkpoints = std::make_unique<SweepCheckpoints>(impl.checkpoint_dir, every);
+      checkpoints = make_sweep_checkpoints(impl.checkpoint_dir, checkpoint_every ? &*checkpoint_every : nullptr, points);
       checkpoints->announce_resumes(!impl.quiet || impl.progress_lines);
     } else if (checkpoint_every) {
       throw InputError(fmt::format("--checkpoint-every = {}{}: it acts only with --checkpoint-dir DIR", checkpoint_every->text(),
@@ -310,12 +304,8 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
   static CancelFlag interrupted{false};
   if (checkpoints) record_interrupts(&interrupted);
   else announce_on_interrupt(fmt::format("every point that finished is stored in {}; repeat the same command to run the rest", db_path));
-  if (rank0 && checkpoints) {  // states of points stored already (stopped between storing and removing them) are spent
-    std::vector<bool> to_run(points.size(), false);
-    for (std::size_t i : todo) to_run[i] = true;
-    std::size_t spent = 0;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (!to_run[i] && checkpoints->has_saved(points[i])) spent += checkpoints->remove(points[i]) ? 1 : 0;
+  if (rank0 && checkpoints) {
+    const std::size_t spent = remove_spent_states(*checkpoints, points, todo);
     if (spent > 0) fmt::print(stderr, "sweep: removed {} saved state{} of points stored already from {}\n", spent, spent == 1 ? "" : "s", checkpoints->dir());
   }
   const bool tty = isatty(STDERR_FILENO) != 0;

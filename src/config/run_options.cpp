@@ -152,7 +152,7 @@ const std::vector<Definition>& definitions() {
                   "keep the run's state in this file as it goes (every checkpoint-every seconds, and when SIGINT or SIGTERM "
                   "stops it) and resume from it where it exists; removed once the run is stored or written (engines: " +
                       resumable_engine_list() + ")",
-                  "a file name", "none", kUseRun, EngineScope::Any, false, "", {}},
+                  "a file name", "none", kUseRun | kUsePython, EngineScope::Any, false, "", {}},
                  false, {}, {},
                  [](RunOptions& o, const Parameter& q, const RawValue& v) {
                    const std::string path = read_name(q, v);
@@ -161,7 +161,7 @@ const std::vector<Definition>& definitions() {
                  }});
     d.push_back({{"checkpoint-every", ParameterType::Real, "",
                   "wall-clock seconds between two saves of a run's state (run --checkpoint, sweep --checkpoint-dir)",
-                  "1 <= checkpoint-every <= 1e7", shown(def.checkpoint_every), kUseRun | kUseSweep, EngineScope::Any, false, "",
+                  "1 <= checkpoint-every <= 1e7", shown(def.checkpoint_every), kUseRun | kUseSweep | kUsePython, EngineScope::Any, false, "",
                   [](double x) { return x >= 1 && x <= 1e7; }},
                  false, {}, {},
                  [](RunOptions& o, const Parameter& q, const RawValue& v) { o.checkpoint_every = read_real(q, v); }});

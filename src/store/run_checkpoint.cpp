@@ -46,4 +46,22 @@ std::optional<RunCheckpoint> read_run_checkpoint(const std::string& path) {
   return RunCheckpoint{doc["key"].get<std::string>(), doc.value("written_by", ""), std::move(doc["state"])};
 }
 
+std::optional<RunCheckpoint> read_run_checkpoint_of(const std::string& path, const std::string& key) {
+  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(path);
+  if (checkpoint && checkpoint->key != key) {
+    throw CheckpointError(fmt::format("'{}' holds the state of another run ({}); give another file, or delete it to start this run anew",
+                                      path, checkpoint->key));
+  }
+  return checkpoint;
+}
+
+bool remove_spent_run_checkpoint(const std::string& path, const std::string& key) {
+  try {
+    const std::optional<RunCheckpoint> left = read_run_checkpoint(path);
+    return left && left->key == key && std::filesystem::remove(path);
+  } catch (const std::exception&) {  // not a checkpoint (of this run), or not removable: left as it is
+    return false;
+  }
+}
+
 }  // namespace granchain

@@ -29,5 +29,11 @@ void write_run_checkpoint(const std::string& path, const RunCheckpoint& checkpoi
 // The checkpoint at path; nothing when no file is there. CheckpointError when one is there but
 // does not read as a checkpoint.
 std::optional<RunCheckpoint> read_run_checkpoint(const std::string& path);
+// The checkpoint of the run with this key at path; nothing when no file is there. CheckpointError
+// also when the file holds another run's state (no state goes on under another run's name).
+std::optional<RunCheckpoint> read_run_checkpoint_of(const std::string& path, const std::string& key);
+// Removes path if it holds the checkpoint of the run with this key (spent: the run is stored or
+// its result returned); true if it did. Anything else at path is left as it is.
+bool remove_spent_run_checkpoint(const std::string& path, const std::string& key);
 
 }  // namespace granchain

@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+
+#include "config/input_error.hpp"
+#include "engines/engine_registry.hpp"
 
 #include "store/output_file.hpp"
 #include "version.hpp"
@@ -43,6 +47,26 @@ void SweepCheckpoints::save(const SweepPoint& point, const StateArchive& state) 
 bool SweepCheckpoints::remove(const SweepPoint& point) const {
   std::error_code ec;
   return std::filesystem::remove(path(point), ec);
+}
+
+std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string& dir, const RawValue* every,
+                                                         const std::vector<SweepPoint>& points) {
+  if (dir.empty()) throw InputError("--checkpoint-dir: the path is empty; give a folder name");
+  if (std::none_of(points.begin(), points.end(), [](const SweepPoint& p) { return SweepCheckpoints::covers(p); }))
+    throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep can save its state; valid: points of --engine {}", dir,
+                                 resumable_engine_list()));
+  const double seconds = every ? read_real(*find_parameter(run_parameters(), "checkpoint-every"), *every) : RunOptions{}.checkpoint_every;
+  return std::make_unique<SweepCheckpoints>(dir, seconds);
+}
+
+std::size_t remove_spent_states(const SweepCheckpoints& checkpoints, const std::vector<SweepPoint>& points,
+                                const std::vector<std::size_t>& todo) {
+  std::vector<bool> to_run(points.size(), false);
+  for (std::size_t i : todo) to_run[i] = true;
+  std::size_t spent = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!to_run[i] && checkpoints.has_saved(points[i])) spent += checkpoints.remove(points[i]) ? 1 : 0;
+  return spent;
 }
 
 }  // namespace granchain

@@ -6,8 +6,11 @@
 // (a signal, or the end of a --time-limit); the next invocation resumes it from there, to the
 // result the point would have had uninterrupted, bit for bit, and removes the file once the point
 // is stored. Every thread and MPI rank uses the same files (the folder on a shared file system).
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "store/run_checkpoint.hpp"
 #include "sweep/sweep_grid.hpp"
@@ -47,5 +50,16 @@ class SweepCheckpoints {
   double every_;
   bool announce_ = true;
 };
+
+// The checkpoints of a sweep of these points kept in dir (`--checkpoint-dir`), each point's state
+// saved every `every` wall seconds (`--checkpoint-every` as given; null: its default). InputError
+// for an empty path, for a sweep none of whose points can save its state, and for `every` out of
+// its range. The folder is not created yet (create_folder).
+std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string& dir, const RawValue* every,
+                                                         const std::vector<SweepPoint>& points);
+// The saved states of points not in todo (stored already: their sweep stopped between storing a
+// point and removing its state) are spent: removed; returns how many.
+std::size_t remove_spent_states(const SweepCheckpoints& checkpoints, const std::vector<SweepPoint>& points,
+                                const std::vector<std::size_t>& todo);
 
 }  // namespace granchain
