@@ -273,7 +273,8 @@ py::dict run_keywords(const py::kwargs& kwargs) {
   }
   const ProgressCallback cb = progress_callback(progress, checkpointing);
   RunResumption resumption;
-  SavedRunPlace saved{};
+  std::optional<SavedRunPlace> saved;  // where the state in the checkpoint stands
+  if (checkpoint) saved = saved_run_place(checkpoint->state);
   if (checkpointing) {
     resumption.resume_from = checkpoint ? &checkpoint->state : nullptr;
     resumption.every = opts.checkpoint_every;
@@ -296,10 +297,11 @@ py::dict run_keywords(const py::kwargs& kwargs) {
     }
   }
   if (cancelled) {  // Ctrl-C with a checkpoint: the state is saved; the KeyboardInterrupt says where
-    PyErr_SetString(PyExc_KeyboardInterrupt,
-                    fmt::format("the run's state at t = {:.6g} of {:.6g} is saved in {}; the same call resumes it (nothing was stored)",
-                                saved.t, opts.spec.transient + opts.spec.T, opts.checkpoint_path)
-                        .c_str());
+    const std::string message =
+        saved ? fmt::format("the run's state at t = {:.6g} of {:.6g} is saved in {}; the same call resumes it (nothing was stored)",
+                            saved->t, opts.spec.transient + opts.spec.T, opts.checkpoint_path)
+              : std::string("the run stopped before its state could be saved; nothing was stored");
+    PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
     throw py::error_already_set();
   }
   {
