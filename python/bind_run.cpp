@@ -193,7 +193,12 @@ ProgressCallback progress_callback(const std::optional<py::object>& user, bool s
     d["steps"] = p.steps;
     d["events"] = p.events;
     d["wall_seconds"] = p.wall_seconds;
-    (*user)(d);
+    try {
+      (*user)(d);
+    } catch (py::error_already_set& e) {  // Ctrl-C while the callback ran is Ctrl-C all the same
+      if (!save_on_interrupt || !e.matches(PyExc_KeyboardInterrupt)) throw;
+      throw RunCancelled{};
+    }
   };
 }
 
@@ -319,7 +324,26 @@ py::dict run_keywords(const py::kwargs& kwargs) {
     }
     json_text = j.dump(2);
   }
-  // The result is whole (and stored): the checkpoint is spent.
+  // The result is whole (and stored): the checkpoint is spent, unless Ctrl-C came after the last
+  // report and the result would be lost with it: then the file is kept, as last saved.
+  if (checkpointing && PyErr_CheckSignals() != 0) {
+    if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
+    PyErr_Clear();
+    std::string message;
+    if (opts.use_db) {
+      remove_spent_run_checkpoint(opts.checkpoint_path, key);
+      message = fmt::format("the run finished and is stored (run {} in {}); the same call reads it back", run_id, opts.db_path);
+    } else if (saved) {
+      message = fmt::format("the run finished, but its result is not returned; {} holds its state as last saved (t = {:.6g}), from "
+                            "which the same call ends it",
+                            opts.checkpoint_path, saved->t);
+    } else {
+      message = "the run finished, but its result is not returned; no state had been saved yet (the first save comes after "
+                "checkpoint_every seconds)";
+    }
+    PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
+    throw py::error_already_set();
+  }
   if (checkpointing) {
     std::error_code ec;
     std::filesystem::remove(opts.checkpoint_path, ec);

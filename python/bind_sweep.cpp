@@ -190,7 +190,14 @@ py::dict sweep(const py::kwargs& kwargs) {
   if (checkpoints) runner.set_checkpoints(checkpoints.get());
   std::function<void()> progress;
   if (q.progress) progress = [&] { (*q.progress)(progress_dict(runner.progress(), n_reused)); };
-  std::optional<py::error_already_set> stop = run_interruptible(cancel, [&] { runner.run(q.threads); }, progress);
+  std::optional<py::error_already_set> stop;
+  try {
+    stop = run_interruptible(cancel, [&] { runner.run(q.threads); }, progress);
+  } catch (const OutputError& e) {  // a point's state could not be saved: the sweep stopped (OSError)
+    throw OutputError(fmt::format("{}; the sweep stopped, the points finished are {} and the states saved before are kept in {}",
+                                  keyword_message(e.what(), run_parameters(), {"checkpoint-dir"}),
+                                  store ? "stored in " + q.db : std::string("lost (no db)"), checkpoints ? checkpoints->dir() : ""));
+  }
   if (stop && !stop->matches(PyExc_KeyboardInterrupt)) throw std::move(*stop);  // the progress callback's own error
   if (q.progress && !stop) {
     SweepProgress p = runner.progress();

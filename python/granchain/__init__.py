@@ -93,7 +93,8 @@ def run(**kwargs):
     checkpoint_every seconds (600) and on Ctrl-C (the KeyboardInterrupt then says where); the same
     call resumes it to the uninterrupted result bit for bit (resumed_at: the time it went on from)
     and removes PATH once the result is returned (and stored).
-    Raises ValueError (bad input, the CLI's message), UnphysicalStateError, StoreError.
+    Raises ValueError (bad input, the CLI's message), UnphysicalStateError, StoreError, OSError (a
+    checkpoint that cannot be written).
     """
     run.__signature__.bind(**kwargs)  # TypeError for a keyword that is no parameter
     result = RunResult(_granchain.run(**kwargs))
@@ -217,7 +218,8 @@ def sweep(**kwargs):
     checkpoint_dir=DIR (``sweep --checkpoint-dir``): each running point keeps its state in DIR,
     saved every checkpoint_every seconds (600) and on Ctrl-C, and the next call resumes it to the
     uninterrupted result bit for bit (.resumed, .saved count them).
-    Raises ValueError for bad input (the CLI's message), StoreError.
+    Raises ValueError for bad input (the CLI's message), StoreError, OSError (a state that cannot
+    be written).
     """
     sweep.__signature__.bind(**kwargs)
     kwargs["progress"] = _progress_callback(kwargs.get("progress"), "sweep", "points")
