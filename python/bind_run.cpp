@@ -263,11 +263,11 @@ py::dict run_keywords(const py::kwargs& kwargs) {
   const bool checkpointing = !opts.checkpoint_path.empty();
   const std::string key = checkpointing ? point_key(opts.spec) : "";
   std::optional<RunCheckpoint> checkpoint;
-  std::optional<double> resumed_at;
+  std::optional<SavedRunPlace> saved;  // where the state in the checkpoint file stands
   if (checkpointing) {
     try {
       checkpoint = read_run_checkpoint_of(opts.checkpoint_path, key);
-      if (checkpoint) resumed_at = saved_run_place(checkpoint->state).t;
+      if (checkpoint) saved = saved_run_place(checkpoint->state);
     } catch (const std::exception& e) {  // CheckpointError, StateArchiveError: bad input, nothing run
       throw InputError(fmt::format("--checkpoint: {}; nothing was run or written", e.what()));
     }
@@ -277,9 +277,8 @@ py::dict run_keywords(const py::kwargs& kwargs) {
                        opts.checkpoint_path, checkpoint->written_by, code_version()));
   }
   const ProgressCallback cb = progress_callback(progress, checkpointing);
+  const py::object resumed_at = saved ? py::object(py::float_(saved->t)) : py::object(py::none());  // where this call goes on from
   RunResumption resumption;
-  std::optional<SavedRunPlace> saved;  // where the state in the checkpoint stands
-  if (checkpoint) saved = saved_run_place(checkpoint->state);
   if (checkpointing) {
     resumption.resume_from = checkpoint ? &checkpoint->state : nullptr;
     resumption.every = opts.checkpoint_every;
@@ -301,11 +300,10 @@ py::dict run_keywords(const py::kwargs& kwargs) {
       cancelled = true;
     }
   }
-  if (cancelled) {  // Ctrl-C with a checkpoint: the state is saved; the KeyboardInterrupt says where
+  if (cancelled) {  // Ctrl-C with a checkpoint: the run saved its state on the way out; the KeyboardInterrupt says where
     const std::string message =
-        saved ? fmt::format("the run's state at t = {:.6g} of {:.6g} is saved in {}; the same call resumes it (nothing was stored)",
-                            saved->t, opts.spec.transient + opts.spec.T, opts.checkpoint_path)
-              : std::string("the run stopped before its state could be saved; nothing was stored");
+        fmt::format("the run's state at t = {:.6g} of {:.6g} is saved in {}; the same call resumes it (nothing was stored)",
+                    saved.value().t, opts.spec.transient + opts.spec.T, opts.checkpoint_path);
     PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
     throw py::error_already_set();
   }
@@ -324,34 +322,36 @@ py::dict run_keywords(const py::kwargs& kwargs) {
     }
     json_text = j.dump(2);
   }
-  // The result is whole (and stored): the checkpoint is spent, unless Ctrl-C came after the last
-  // report and the result would be lost with it: then the file is kept, as last saved.
-  if (checkpointing && PyErr_CheckSignals() != 0) {
+  // The result is whole (and stored): the checkpoint is spent. Ctrl-C after the last report would
+  // lose an unstored result with it: then the file is kept, as last saved.
+  const bool late_interrupt = checkpointing && PyErr_CheckSignals() != 0;
+  if (late_interrupt) {
     if (!PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) throw py::error_already_set();
     PyErr_Clear();
-    std::string message;
-    if (opts.use_db) {
-      remove_spent_run_checkpoint(opts.checkpoint_path, key);
-      message = fmt::format("the run finished and is stored (run {} in {}); the same call reads it back", run_id, opts.db_path);
-    } else if (saved) {
-      message = fmt::format("the run finished, but its result is not returned; {} holds its state as last saved (t = {:.6g}), from "
-                            "which the same call ends it",
-                            opts.checkpoint_path, saved->t);
-    } else {
-      message = "the run finished, but its result is not returned; no state had been saved yet (the first save comes after "
-                "checkpoint_every seconds)";
+    if (!opts.use_db) {
+      const std::string message =
+          saved ? fmt::format("the run finished, but its result is not returned; {} holds its state as last saved (t = {:.6g}), "
+                              "from which the same call ends it",
+                              opts.checkpoint_path, saved->t)
+                : std::string("the run finished, but its result is not returned; no state had been saved yet (the first save "
+                              "comes after checkpoint_every seconds)");
+      PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
+      throw py::error_already_set();
     }
-    PyErr_SetString(PyExc_KeyboardInterrupt, message.c_str());
-    throw py::error_already_set();
   }
   if (checkpointing) {
     std::error_code ec;
     std::filesystem::remove(opts.checkpoint_path, ec);
     if (ec) warn(fmt::format("checkpoint {} could not be removed: {}", opts.checkpoint_path, ec.message()));
   }
+  if (late_interrupt) {  // with db: the run is stored
+    PyErr_SetString(PyExc_KeyboardInterrupt,
+                    fmt::format("the run finished and is stored (run {} in {}); the same call reads it back", run_id, opts.db_path).c_str());
+    throw py::error_already_set();
+  }
   py::dict d = run_result_dict(result, json_text, opts.use_db ? opts.db_path : "", run_id);
   d["reused"] = reused;
-  d["resumed_at"] = resumed_at ? py::object(py::float_(*resumed_at)) : py::object(py::none());
+  d["resumed_at"] = resumed_at;
   return d;
 }
 

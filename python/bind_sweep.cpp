@@ -106,16 +106,15 @@ py::dict sweep(const py::kwargs& kwargs) {
   try {
     q = sweep_request_checked(kwargs);
     points = build_sweep_points(q.def);
-    if (q.checkpoint_dir) {
-      checkpoints = make_sweep_checkpoints(*q.checkpoint_dir, q.checkpoint_every ? &*q.checkpoint_every : nullptr, points);
+    checkpoints = make_sweep_checkpoints(q.checkpoint_dir ? &*q.checkpoint_dir : nullptr, q.checkpoint_every ? &*q.checkpoint_every : nullptr,
+                                         points);
+    if (checkpoints) {
       checkpoints->announce_resumes(false);  // counted in the result's `resumed` instead
       try {
         checkpoints->create_folder();
       } catch (const OutputError& e) {
         throw InputError(e.what());  // as the CLI: bad input, nothing run
       }
-    } else if (q.checkpoint_every) {
-      throw InputError(fmt::format("--checkpoint-every = {}: it acts only with --checkpoint-dir DIR", q.checkpoint_every->text()));
     }
   } catch (const InputError& e) {
     throw InputError(keyword_message(e.what(), run_parameters(), {"replicas", "threads", "progress", "checkpoint-dir"}));

@@ -205,13 +205,9 @@ int execute_sweep(const std::shared_ptr<SweepFlags>& impl_, CLI::App* sub_) {
                                    impl.progress_every));
     points = build_sweep_points(def);
     if (shard_n > 1) points = shard_points(points, shard_i, shard_n);
-    if (given("--checkpoint-dir")) {
-      checkpoints = make_sweep_checkpoints(impl.checkpoint_dir, checkpoint_every ? &*checkpoint_every : nullptr, points);
-      checkpoints->announce_resumes(!impl.quiet || impl.progress_lines);
-    } else if (checkpoint_every) {
-      throw InputError(fmt::format("--checkpoint-every = {}{}: it acts only with --checkpoint-dir DIR", checkpoint_every->text(),
-                                   from_where(*checkpoint_every)));
-    }
+    checkpoints = make_sweep_checkpoints(given("--checkpoint-dir") ? &impl.checkpoint_dir : nullptr,
+                                         checkpoint_every ? &*checkpoint_every : nullptr, points);
+    if (checkpoints) checkpoints->announce_resumes(!impl.quiet || impl.progress_lines);
     if (!impl.sweep_path.empty()) check_output_file(db_path, "--db", {{"--sweep", impl.sweep_path}});
     // A dry run only reads the store, if there is one.
     if (rank0 && !impl.dry_run) ResultsStore::preflight(db_path);

@@ -7,7 +7,6 @@
 
 #include "config/input_error.hpp"
 #include "engines/engine_registry.hpp"
-
 #include "store/output_file.hpp"
 #include "version.hpp"
 
@@ -49,8 +48,14 @@ bool SweepCheckpoints::remove(const SweepPoint& point) const {
   return std::filesystem::remove(path(point), ec);
 }
 
-std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string& dir, const RawValue* every,
+std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string* given_dir, const RawValue* every,
                                                          const std::vector<SweepPoint>& points) {
+  if (given_dir == nullptr) {
+    if (every)
+      throw InputError(fmt::format("--checkpoint-every = {}{}: it acts only with --checkpoint-dir DIR", every->text(), from_where(*every)));
+    return nullptr;
+  }
+  const std::string& dir = *given_dir;
   if (dir.empty()) throw InputError("--checkpoint-dir: the path is empty; give a folder name");
   if (std::none_of(points.begin(), points.end(), [](const SweepPoint& p) { return SweepCheckpoints::covers(p); }))
     throw InputError(fmt::format("--checkpoint-dir = {}: no point of this sweep can save its state; valid: points of --engine {}", dir,

@@ -51,11 +51,12 @@ class SweepCheckpoints {
   bool announce_ = true;
 };
 
-// The checkpoints of a sweep of these points kept in dir (`--checkpoint-dir`), each point's state
-// saved every `every` wall seconds (`--checkpoint-every` as given; null: its default). InputError
-// for an empty path, for a sweep none of whose points can save its state, and for `every` out of
-// its range. The folder is not created yet (create_folder).
-std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string& dir, const RawValue* every,
+// The checkpoints of a sweep of these points kept in *dir (`--checkpoint-dir`; null: none, then
+// nullptr), each point's state saved every `every` wall seconds (`--checkpoint-every` as given;
+// null: its default). InputError for an empty path, for a sweep none of whose points can save its
+// state, for `every` out of its range, and for `every` without a folder. The folder is not created
+// yet (create_folder).
+std::unique_ptr<SweepCheckpoints> make_sweep_checkpoints(const std::string* dir, const RawValue* every,
                                                          const std::vector<SweepPoint>& points);
 // The saved states of points not in todo (stored already: their sweep stopped between storing a
 // point and removing its state) are spent: removed; returns how many.
