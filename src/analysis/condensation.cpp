@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace granchain::analysis {
@@ -15,8 +16,32 @@ const char* condensed_state_name(CondensedState s) {
   return "none";
 }
 
+namespace {
+
+double normal_upper_tail(double z) { return 0.5 * std::erfc(z / std::numbers::sqrt2); }
+
+}  // namespace
+
+std::size_t inversion_pairs(std::size_t n) {
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < (n + 1) / 2; ++i) pairs += n - 1 - i;
+  return pairs;
+}
+
+double pair_test_threshold(std::size_t pairs) {
+  constexpr double z_reference = 3.0;
+  const double tail = normal_upper_tail(z_reference) * static_cast<double>(inversion_pairs(25)) / static_cast<double>(pairs);
+  if (pairs == 0 || normal_upper_tail(z_reference) <= tail) return z_reference;
+  double lo = z_reference, hi = 40.0;  // Q falls monotonically: bisect Q(z) = tail
+  for (int it = 0; it < 200 && hi - lo > 1e-12; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (normal_upper_tail(mid) > tail ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& K, const std::vector<ParticleValue>& sigma,
-                                              const std::vector<double>& sigma0, double z) {
+                                              const std::vector<double>& sigma0) {
   if (K.size() < 3) throw std::invalid_argument("partial condensation: needs at least 3 particles");
   CondensationCheck c;
   // A dip near the floor: the particle i in the lower half of the column (i <= ceil(N/2)) above
@@ -35,7 +60,8 @@ CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& 
         c.rise_error = error;
       }
     }
-  c.condensed = c.rise > z * c.rise_error && c.rise > 0;
+  c.z = pair_test_threshold(inversion_pairs(K.size()));
+  c.condensed = c.rise > c.z * c.rise_error && c.rise > 0;
   // The hot layer: a particle j above the dip and below the free surface (the top max(2, N/10))
   // warmer than some particle m above it, the pair with the largest drop in standard errors.
   const std::size_t n = K.size();
@@ -54,7 +80,7 @@ CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& 
       }
     }
   if (c.condensed) {
-    c.state = c.hot > 0 && c.hot_drop > z * c.hot_drop_error ? CondensedState::Partial : CondensedState::Whole;
+    c.state = c.hot > 0 && c.hot_drop > c.z * c.hot_drop_error ? CondensedState::Partial : CondensedState::Whole;
   }
   if (!sigma.empty() && sigma.size() == K.size() && sigma0.size() == K.size()) {
     c.sigma_ratio_min = sigma[0].value / sigma0[0];

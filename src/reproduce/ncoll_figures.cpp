@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/condensation.hpp"
 #include "reproduce/figures.hpp"
 #include "theory/collapse_theory.hpp"
 
@@ -138,9 +139,10 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o, Reproducti
   const auto failures = run_missing_points(points, o, o.figure, log);
   const StoreAnalysis a = analyze_points(o.db, points, preset_k_min(o));
   nlohmann::json plot = {{"N", 25}, {"k", grid.k}, {"curves", nlohmann::json::array()}};
-  std::string table =
-      "| e | K_i dip at particle | largest rise of K_i above it | inversion (> 3σ) | hot layer: particle, cooler one above, drop | state | "
-      "min σ_i/σ_0,i (particle) |\n|---|---|---|---|---|---|---|\n";
+  const double z = analysis::pair_test_threshold(analysis::inversion_pairs(25));  // the test's threshold at N = 25
+  std::string table = fmt::format(
+      "| e | K_i dip at particle | largest rise of K_i above it | inversion (> {:g}σ) | hot layer: particle, cooler one above, drop | state | "
+      "min σ_i/σ_0,i (particle) |\n|---|---|---|---|---|---|---|\n", z);
   std::string condensed;
   for (const auto& fam : a.json["families"])
     for (const auto& c : fam["curves"]) {
@@ -173,9 +175,9 @@ FigureOutcome reproduce_partial_condensation(const ReproduceFlags& o, Reproducti
       reproduce_command_line(o), grid.k, grid.T, grid.e);
   out.markdown += table;
   out.markdown += fmt::format(
-      "\nPartially condensed (K_i rises above its dip by more than 3 standard errors) at e = {}; the paper (k = 1e10): a "
+      "\nPartially condensed (K_i rises above its dip by more than {:g} standard errors) at e = {}; the paper (k = 1e10): a "
       "dip and an inversion layer for 0.84 ≲ e ≲ 0.90, monotone profiles for e ≳ 0.91.\n",
-      condensed.empty() ? "none" : condensed);
+      z, condensed.empty() ? "none" : condensed);
   out.markdown += excluded_markdown(a);
   return out;
 }

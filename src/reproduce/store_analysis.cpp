@@ -226,6 +226,7 @@ StoreAnalysis analyze_store(const std::string& db, const ExportSelection& select
                                       {"K_hot_drop", pc.check.hot_drop}, {"K_hot_drop_err", pc.check.hot_drop_error},
                                       {"K_dip_particle", pc.check.dip},
                                       {"K_rise", pc.check.rise}, {"K_rise_err", pc.check.rise_error},
+                                      {"z_threshold", pc.check.z},
                                       {"sigma_ratio_min", pc.check.sigma_dip ? nlohmann::json(pc.check.sigma_ratio_min) : nlohmann::json(nullptr)},
                                       {"sigma_ratio_min_particle", pc.check.sigma_dip}};
         nlohmann::json prof = {{"K", nlohmann::json::array()}, {"K_err", nlohmann::json::array()},
@@ -374,13 +375,16 @@ std::string analysis_text(const StoreAnalysis& a) {
                          "run longer or with a longer transient): {}\n", unsettled);
     if (fc != a.condensation.end()) {
       std::string partial, whole;
+      double z = 0;
       for (const auto& [e, pc] : fc->second) {
+        z = pc.check.z;
         std::string& list = pc.check.state == analysis::CondensedState::Partial ? partial : whole;
         if (pc.check.condensed) list += fmt::format("{}{:g}", list.empty() ? "" : ", ", e);
       }
-      out += fmt::format("  K_i inversion: partially condensed (interior hot layer, Fig. partial_cond) at e = {}; "
-                         "condensed as a whole (only the surface warmer) at e = {}\n",
-                         partial.empty() ? "none" : partial, whole.empty() ? "none" : whole);
+      out += fmt::format("  K_i inversion (a rise by more than z = {:.2f} standard errors; z grows with the {} pairs compared): partially condensed "
+                         "(interior hot layer, Fig. partial_cond) at e = {}; condensed as a whole (only the surface warmer) at e = {}\n",
+                         z, analysis::inversion_pairs(static_cast<std::size_t>(f.N)), partial.empty() ? "none" : partial,
+                         whole.empty() ? "none" : whole);
     }
     out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
