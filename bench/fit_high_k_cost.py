@@ -3,21 +3,22 @@
 and the growth per decade of k that it fits.
 
 Inside its box (k <= 1e10) the model is a fit of ln(seconds per unit time); above it, it multiplies
-the rate at k = 1e10 by exp(s(x) (log10 k - 10)), x = ln(1 + N (1 - e)), where
-    s(x) = s0 + s1 x + s2 x^2,   x clamped to [X_MIN, X_MAX],
-a falling rate (s < 0) only over the FALL_DECADES decades measured. X_MIN is the runs' smallest
-N (1 - e); above X_MAX (N (1 - e) = 35, the columns of N = 50 ... 300 on the power-law side) s is
-flat: those columns grow alike (0.42 ... 0.68 each) and a polynomial through them would bend.
-A collapsing column's collision rate per particle grows like k^alpha (the paper's power-law regime),
-and so does the number of events; an uncollapsing one's hardly grows: s runs from about -0.17 at
-N (1 - e) = 1.2 to about 0.6 at N (1 - e) >= 35.
+the rate at k = 1e10 by exp(s (log10 k - 10)), where
+    s(N, e) = P(x) + delta w(c) ln(max(N, 100) / 100),   c = N (1 - e), x = ln(1 + c),
+P piecewise linear in x between its values at the knots c = KNOTS_C (x clamped to the first and
+last: flat beyond c = 35, the columns of N = 50 ... 300 on the power-law side, which grow alike),
+w = 1 for c <= 3, falling linearly to 0 at c = 5: an uncollapsing large column's cost falls more
+slowly than a small one's (about -0.1 per decade at N <= 100, -0.05 at N = 300 and 500, none at
+1000). A falling rate (s < 0) is followed only over the FALL_DECADES decades measured. A collapsing
+column's collision rate per particle grows like k^alpha (the paper's power-law regime), and so does
+the number of events; an uncollapsing one's hardly grows.
 
     /usr/bin/python3 bench/fit_high_k_cost.py STORE [STORE ...] [--granchain build/granchain]
 
 For every exact-engine run on the thermal floor with a stored CPU time at k >= 1e10: the binary's
 prediction (`granchain sweep --dry-run` of the run's point, matched by seed), the term above divided
-out again (S_NOW below, keep in step with kAboveKCoefficients), and the least-squares fit of
-    ln(measured / predicted at k = 1e10's rate) = u_column + s(x) (log10 k - 10),
+out again (S_NOW below, keep in step with kAboveKKnots and kAboveKLargeN), and the least-squares fit of
+    ln(measured / predicted at k = 1e10's rate) = u_column + s(N, e) (log10 k - 10),
 u_column one free offset per column (N, e, k_B T0): the box's own error at that column, which the
 term above k = 1e10 should not absorb. Columns with a single k carry no slope and are left out of
 the fit. Prints the coefficients, then measured / predicted per class of N (1 - e) and decade of k
@@ -32,8 +33,9 @@ import sys
 
 import numpy as np
 
-S_NOW = (-0.374, 0.255, 0.005)  # kAboveKCoefficients in src/sweep/cost_model.cpp
-X_MIN, X_MAX = math.log1p(1.2), math.log1p(35.0)
+KNOTS_C = (1.2, 2.0, 2.8, 3.5, 5.0, 10.0, 35.0)  # kAboveKKnotsC in src/sweep/cost_model.cpp
+KNOTS_X = tuple(math.log1p(c) for c in KNOTS_C)
+S_NOW = ((-0.085, -0.098, -0.045, 0.012, 0.080, 0.522, 0.458), 0.018)  # kAboveKKnots, kAboveKLargeN
 FALL_DECADES = 5  # kDecadesOfFallMeasured: the uncollapsing columns' runs reach k = 1e15
 CLASSES = ((0.0, 3.0), (3.0, 6.0), (6.0, 30.0), (30.0, 1e9))  # of N (1 - e), for the tables
 
@@ -48,17 +50,33 @@ def class_label(cls):
     return "%g - %g" % (lo, hi) if hi < 1e9 else ">= %g" % lo
 
 
-def clamp_x(N, e):
-    return min(max(math.log1p(N * (1.0 - e)), X_MIN), X_MAX)
+def hats(N, e):
+    """The weights of P's knots at N (1 - e): P(x) = hats . knots."""
+    x = min(max(math.log1p(N * (1.0 - e)), KNOTS_X[0]), KNOTS_X[-1])
+    v = np.zeros(len(KNOTS_X))
+    for j in range(len(KNOTS_X) - 1):
+        if KNOTS_X[j] <= x <= KNOTS_X[j + 1]:
+            t = (x - KNOTS_X[j]) / (KNOTS_X[j + 1] - KNOTS_X[j])
+            v[j], v[j + 1] = 1.0 - t, t
+            break
+    return v
 
 
-def slope(s, x):
-    return s[0] + s[1] * x + s[2] * x * x
+def large_n(N, e):
+    """w(c) ln(max(N, 100) / 100): where and by how much a large column's fall is slower."""
+    c = N * (1.0 - e)
+    w = 1.0 if c <= 3.0 else 0.0 if c >= 5.0 else (5.0 - c) / 2.0
+    return w * math.log(max(N, 100.0) / 100.0)
+
+
+def slope(s, N, e):
+    knots, delta = s
+    return float(hats(N, e) @ np.array(knots)) + delta * large_n(N, e)
 
 
 def log_growth(s, N, e, lk):
     """ln of the rate's gain from k = 1e10 to lk decades above it; a fall stops after FALL_DECADES."""
-    g = slope(s, clamp_x(N, e))
+    g = slope(s, N, e)
     return g * (min(lk, FALL_DECADES) if g < 0 else lk)
 
 
@@ -115,22 +133,23 @@ def main(argv):
         columns[(N, e, T0)].append(i)
     fit_cols = [c for c, idx in columns.items() if len({data[i][3] for i in idx}) >= 2]
     used = [i for c in fit_cols for i in columns[c]]
-    A = np.zeros((len(used), len(fit_cols) + 3))
+    nk = len(KNOTS_X)
+    A = np.zeros((len(used), len(fit_cols) + nk + 1))
     b = np.zeros(len(used))
     for row, i in enumerate(used):
         N, e, T0, lk, _y, y0 = data[i]
         A[row, fit_cols.index((N, e, T0))] = 1.0
-        x = clamp_x(N, e)
-        A[row, -3:] = (lk, lk * x, lk * x * x)
+        A[row, len(fit_cols):len(fit_cols) + nk] = lk * hats(N, e)
+        A[row, -1] = lk * large_n(N, e)
         b[row] = y0
     coef, *_ = np.linalg.lstsq(A, b, rcond=None)
-    s = coef[-3:]
+    s = (tuple(coef[len(fit_cols):len(fit_cols) + nk]), coef[-1])
     res = b - A @ coef
-    print("fit over %d runs of %d columns: s(x) = %.3f + %.3f x + %.3f x^2, x = ln(1 + N (1 - e)) in [%.2f, %.2f]; "
-          "residual rms %.2f in ln" % (len(used), len(fit_cols), s[0], s[1], s[2], X_MIN, X_MAX, res.std()))
-    print("  as C++: constexpr double kAboveKCoefficients[3] = {%.3f, %.3f, %.3f};" % tuple(s))
-    print("  s at N (1 - e) = " + ", ".join("%g: %.3f" % (c, slope(s, clamp_x(c + 1, 1.0 / (c + 1))))
-                                             for c in (1.2, 2.6, 5, 10, 35, 135, 300)))
+    print("fit over %d runs of %d columns: P at N (1 - e) = %s; delta = %.4f; residual rms %.3f in ln"
+          % (len(used), len(fit_cols), ", ".join("%g: %.3f" % kv for kv in zip(KNOTS_C, s[0])), s[1], res.std()))
+    print("  as C++: constexpr double kAboveKKnots[%d] = {%s}; kAboveKLargeN = %.3f;"
+          % (nk, ", ".join("%.3f" % v for v in s[0]), s[1]))
+    print("  s at N (1 - e) = 1.2 for N = 100, 300, 1000: " + ", ".join("%.3f" % slope(s, N, 1.0 - 1.2 / N) for N in (100, 300, 1000)))
 
     print("\nmeasured / predicted (geometric mean, share within 2x) by N (1 - e) and k, with the binary's model and with")
     print("k held at 1e10 (the term above divided out):")

@@ -33,24 +33,42 @@ const double kXMax = std::log1p(kCalibratedNMax * 0.9);  // the largest c of the
 const double kXPolynomialMax = std::log1p(30.0);
 constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysis of a short run
 // `/usr/bin/python3 bench/fit_high_k_cost.py data/paper/paper.db data/columns/columns.db
-// data/columns/long_windows.db` (2026-11-29): above k = 1e10 the rate of k = 1e10 grows by
-// exp(s(x)) per decade of k, s(x) = s0 + s1 x + s2 x^2, x = ln(1 + N (1 - e)) clamped to
-// [ln 2.2, ln 36], fitted on 993 runs of 151 columns (N = 10 ... 500, k = 1e10 ... 1e30) with one
-// free offset per column (on 1023 runs of 153 columns and the box of kExactCoefficients the fit
-// gives -0.380, 0.262, 0.003). A collapsing column's collisions grow like k^alpha: s = 0.61 at
-// N (1 - e) >= 35 (the columns of N = 50 ... 300 there: 0.42 ... 0.68 each); an uncollapsing one's
-// cost falls slightly (s = -0.17 at N (1 - e) = 1.2), a fall measured only up to k = 1e15 and not
-// extrapolated beyond it.
-constexpr double kAboveKCoefficients[3] = {-0.374, 0.255, 0.005};
-const double kAboveKXMin = std::log1p(1.2), kAboveKXMax = std::log1p(35.0);
+// data/columns/long_windows.db` (2026-12-07): above k = 1e10 the rate of k = 1e10 grows by exp(s)
+// per decade of k, s = P(x) + delta w(c) ln(max(N, 100) / 100), c = N (1 - e), x = ln(1 + c):
+// P piecewise linear in x between its values at the knots c = 1.2 ... 35 (x clamped to them),
+// w = 1 for c <= 3 falling to 0 at c = 5. Fitted on the 1061 runs of the 155 columns with two or
+// more k >= 1e10 (N = 10 ... 1000, k = 1e10 ... 1e30), one free offset per column. A collapsing column's collisions grow like
+// k^alpha: s = 0.46 at c >= 35 (the columns of N = 50 ... 300 there: 0.42 ... 0.68 each), 0.52 at
+// c = 10; an uncollapsing one's cost falls slightly, s = -0.085 at c = 1.2 for N <= 100, and more
+// slowly in large columns (-0.065 at N = 300, -0.043 at 1000, where the stored columns fall by
+// about 0.05 and hardly at all), a fall measured only up to k = 1e15 and not extrapolated beyond it.
+constexpr int kAboveKKnotCount = 7;
+constexpr double kAboveKKnotsC[kAboveKKnotCount] = {1.2, 2.0, 2.8, 3.5, 5.0, 10.0, 35.0};
+constexpr double kAboveKKnots[kAboveKKnotCount] = {-0.085, -0.098, -0.045, 0.012, 0.080, 0.522, 0.458};
+constexpr double kAboveKLargeN = 0.018;
 constexpr double kDecadesOfFallMeasured = 5;
+
+// s, the growth of ln(rate) per decade of k above 1e10.
+double growth_per_decade_above_box_k(double N, double e) {
+  const double c = N * (1.0 - e);
+  const double x = std::clamp(std::log1p(c), std::log1p(kAboveKKnotsC[0]), std::log1p(kAboveKKnotsC[kAboveKKnotCount - 1]));
+  double p = kAboveKKnots[kAboveKKnotCount - 1];
+  for (int j = 0; j + 1 < kAboveKKnotCount; ++j) {
+    const double x0 = std::log1p(kAboveKKnotsC[j]), x1 = std::log1p(kAboveKKnotsC[j + 1]);
+    if (x <= x1) {
+      p = kAboveKKnots[j] + (kAboveKKnots[j + 1] - kAboveKKnots[j]) * (x - x0) / (x1 - x0);
+      break;
+    }
+  }
+  const double w = std::clamp((5.0 - c) / 2.0, 0.0, 1.0);
+  return p + kAboveKLargeN * w * std::log(std::max(N, 100.0) / 100.0);
+}
 
 // ln of what the rate gains from k = 1e10 to k (0 at k <= 1e10).
 double log_growth_above_box_k(double N, double e, double k) {
   const double decades = std::log10(k) - (5.0 + kDecadesAbove1e5);
   if (decades <= 0.0) return 0.0;
-  const double x = std::clamp(std::log1p(N * (1.0 - e)), kAboveKXMin, kAboveKXMax);
-  const double s = kAboveKCoefficients[0] + kAboveKCoefficients[1] * x + kAboveKCoefficients[2] * x * x;
+  const double s = growth_per_decade_above_box_k(N, e);
   return s * (s < 0.0 ? std::min(decades, kDecadesOfFallMeasured) : decades);
 }
 
