@@ -30,8 +30,8 @@ std::size_t inversion_pairs(std::size_t n) {
 
 double pair_test_threshold(std::size_t pairs) {
   constexpr double z_reference = 3.0;
+  if (pairs <= inversion_pairs(25)) return z_reference;
   const double tail = normal_upper_tail(z_reference) * static_cast<double>(inversion_pairs(25)) / static_cast<double>(pairs);
-  if (pairs == 0 || normal_upper_tail(z_reference) <= tail) return z_reference;
   double lo = z_reference, hi = 40.0;  // Q falls monotonically: bisect Q(z) = tail
   for (int it = 0; it < 200 && hi - lo > 1e-12; ++it) {
     const double mid = 0.5 * (lo + hi);
@@ -60,7 +60,8 @@ CondensationCheck detect_partial_condensation(const std::vector<ParticleValue>& 
         c.rise_error = error;
       }
     }
-  c.z = pair_test_threshold(inversion_pairs(K.size()));
+  c.pairs = inversion_pairs(K.size());
+  c.z = pair_test_threshold(c.pairs);
   c.condensed = c.rise > c.z * c.rise_error && c.rise > 0;
   // The hot layer: a particle j above the dip and below the free surface (the top max(2, N/10))
   // warmer than some particle m above it, the pair with the largest drop in standard errors.

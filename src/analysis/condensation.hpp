@@ -45,6 +45,7 @@ struct CondensationCheck {
   // The threshold of both searches in standard errors, pair_test_threshold(inversion_pairs(N)):
   // the hot-layer search compares of order N^2 pairs as well, and keeps z = 3 at N = 25.
   double z = 0;
+  std::size_t pairs = 0;  // inversion_pairs(N), the pairs the inversion search compares
   int sigma_dip = 0;          // 1-based particle of the lowest sigma_i / sigma_0,i (0 without sigma_0)
   double sigma_ratio_min = 0;
 };

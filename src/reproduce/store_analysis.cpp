@@ -376,14 +376,16 @@ std::string analysis_text(const StoreAnalysis& a) {
     if (fc != a.condensation.end()) {
       std::string partial, whole;
       double z = 0;
+      std::size_t pairs = 0;
       for (const auto& [e, pc] : fc->second) {
         z = pc.check.z;
+        pairs = pc.check.pairs;
         std::string& list = pc.check.state == analysis::CondensedState::Partial ? partial : whole;
         if (pc.check.condensed) list += fmt::format("{}{:g}", list.empty() ? "" : ", ", e);
       }
-      out += fmt::format("  K_i inversion (a rise by more than z = {:.2f} standard errors; z grows with the {} pairs compared): partially condensed "
+      out += fmt::format("  K_i inversion (rise > z = {:.2f} standard errors, z set by the {} pairs compared): partially condensed "
                          "(interior hot layer, Fig. partial_cond) at e = {}; condensed as a whole (only the surface warmer) at e = {}\n",
-                         z, analysis::inversion_pairs(static_cast<std::size_t>(f.N)), partial.empty() ? "none" : partial,
+                         z, pairs, partial.empty() ? "none" : partial,
                          whole.empty() ? "none" : whole);
     }
     out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",

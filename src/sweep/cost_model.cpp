@@ -39,13 +39,14 @@ constexpr double kRunOverheadSeconds = 2e-3;  // set-up and the blocking analysi
 // w = 1 for c <= 3 falling to 0 at c = 5. Fitted on the 1061 runs of the 155 columns with two or
 // more k >= 1e10 (N = 10 ... 1000, k = 1e10 ... 1e30), one free offset per column. A collapsing column's collisions grow like
 // k^alpha: s = 0.46 at c >= 35 (the columns of N = 50 ... 300 there: 0.42 ... 0.68 each), 0.52 at
-// c = 10; an uncollapsing one's cost falls slightly, s = -0.085 at c = 1.2 for N <= 100, and more
-// slowly in large columns (-0.065 at N = 300, -0.043 at 1000, where the stored columns fall by
-// about 0.05 and hardly at all), a fall measured only up to k = 1e15 and not extrapolated beyond it.
+// c = 10; an uncollapsing one's cost falls slightly, s = -0.09 at c <= 2.8 for N <= 100, and more
+// slowly in large columns (-0.056 at N = 300, -0.016 at 1000, as the stored columns fall by about
+// 0.05 and hardly at all), a fall measured only up to k = 1e15 and not extrapolated beyond it: the
+// fit counts a falling column's decades up to five, as the model does.
 constexpr int kAboveKKnotCount = 7;
 constexpr double kAboveKKnotsC[kAboveKKnotCount] = {1.2, 2.0, 2.8, 3.5, 5.0, 10.0, 35.0};
-constexpr double kAboveKKnots[kAboveKKnotCount] = {-0.085, -0.098, -0.045, 0.012, 0.080, 0.522, 0.458};
-constexpr double kAboveKLargeN = 0.018;
+constexpr double kAboveKKnots[kAboveKKnotCount] = {-0.093, -0.092, -0.096, 0.006, 0.081, 0.520, 0.458};
+constexpr double kAboveKLargeN = 0.033;
 constexpr double kDecadesOfFallMeasured = 5;
 
 // s, the growth of ln(rate) per decade of k above 1e10.

@@ -16,9 +16,9 @@ namespace granchain {
 //    of 2). N is held in the box 3 <= N <= 150 and k in 1e5 ... 1e10: beyond N = 150 the
 //    rate of N = 150 at the column's own N (1 - e) is scaled by (N / 150)^2.29, fitted with the rest
 //    on runs of N = 200 ... 1000; beyond k = 1e10 the rate of k = 1e10 times exp(s) per decade,
-//    s piecewise linear in N (1 - e), from -0.085 (N (1 - e) = 1.2, N <= 100; a fall that slows in
-//    larger columns: -0.043 at N = 1000) to 0.46 (N (1 - e) >= 35: the collisions of a collapsing
-//    column grow like k^alpha), fitted by bench/fit_high_k_cost.py on the stored runs up to
+//    s piecewise linear in ln(1 + N (1 - e)): about -0.09 at N (1 - e) <= 2.8 for N <= 100 (a fall
+//    that slows in larger columns: -0.016 at N = 1000), 0.08 at 5, 0.52 at 10 and 0.46 from 35 on
+//    (the collisions of a collapsing column grow like k^alpha), fitted by bench/fit_high_k_cost.py on the stored runs up to
 //    k = 1e30 (95 % of 874 within a factor of 2, 73 % with k held at 1e10). Above a vibrating
 //    plate: times a factor of the drive, k, N and N (1 - e) fitted by bench/fit_plate_cost.py
 //    (about 0.5-1.4 at k = 1e5, 1-5 at 1e8 and 1.3-17 at 1e10 for N = 25).
