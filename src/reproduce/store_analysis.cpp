@@ -375,18 +375,14 @@ std::string analysis_text(const StoreAnalysis& a) {
                          "run longer or with a longer transient): {}\n", unsettled);
     if (fc != a.condensation.end()) {
       std::string partial, whole;
-      double z = 0;
-      std::size_t pairs = 0;
+      const analysis::CondensationCheck& any = fc->second.begin()->second.check;  // one N: one z for the family
       for (const auto& [e, pc] : fc->second) {
-        z = pc.check.z;
-        pairs = pc.check.pairs;
         std::string& list = pc.check.state == analysis::CondensedState::Partial ? partial : whole;
         if (pc.check.condensed) list += fmt::format("{}{:g}", list.empty() ? "" : ", ", e);
       }
       out += fmt::format("  K_i inversion (rise > z = {:.2f} standard errors, z set by the {} pairs compared): partially condensed "
                          "(interior hot layer, Fig. partial_cond) at e = {}; condensed as a whole (only the surface warmer) at e = {}\n",
-                         z, pairs, partial.empty() ? "none" : partial,
-                         whole.empty() ? "none" : whole);
+                         any.z, any.pairs, partial.empty() ? "none" : partial, whole.empty() ? "none" : whole);
     }
     out += fmt::format("  e_c1 = {}   e_c2 = {}   alpha bar (e = 0.1..0.4) = {}\n",
                f.e_c1.found ? plus_minus(f.e_c1.value, f.e_c1.error, 4) : "not found",
