@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <optional>
 #include <thread>
 #include <unordered_set>
 
@@ -15,6 +16,7 @@
 #include "config/value_list.hpp"
 #include "store/output_file.hpp"
 #include "provenance.hpp"
+#include "simulation/driven_run.hpp"
 #include "store/results_store.hpp"
 #include "store/run_json.hpp"
 #include "sweep/sweep_grid.hpp"
@@ -157,11 +159,20 @@ py::dict sweep(const py::kwargs& kwargs) {
     }
   }
   std::size_t n_reused = static_cast<std::size_t>(std::count(reused.begin(), reused.end(), 1));
-  std::size_t resumed = 0;  // points that go on from a saved state
+  // Points that go on from a saved state, and the time each goes on from (a file that does not read
+  // as the point's state is no resumption: the point starts anew, as run_sweep_point says).
+  std::vector<std::optional<double>> resumed_at(points.size());
+  std::size_t resumed = 0;
   if (checkpoints) {
     py::gil_scoped_release nogil;
     remove_spent_states(*checkpoints, points, todo);
-    for (std::size_t i : todo) resumed += checkpoints->has_saved(points[i]) ? 1 : 0;
+    for (std::size_t i : todo) {
+      try {
+        if (const auto saved = checkpoints->saved(points[i])) resumed_at[i] = saved_run_place(saved->state).t;
+      } catch (const std::exception&) {  // CheckpointError, StateArchiveError: the sweep warns when it reaches the point
+      }
+      resumed += resumed_at[i] ? 1 : 0;
+    }
   }
 
   std::size_t inserted = 0;
@@ -209,6 +220,7 @@ py::dict sweep(const py::kwargs& kwargs) {
     if (!results[i]) continue;
     py::dict d = run_result_dict(*results[i], json_texts[i], store ? q.db : "", ids[i]);
     d["reused"] = static_cast<bool>(reused[i]);
+    d["resumed_at"] = resumed_at[i] ? py::object(py::float_(*resumed_at[i])) : py::object(py::none());
     d["replica"] = points[i].replica;
     d["key"] = points[i].key;
     out.append(d);

@@ -217,7 +217,8 @@ def sweep(**kwargs):
     granchain.Interrupted is raised, its .result the SweepResult of the points that finished.
     checkpoint_dir=DIR (``sweep --checkpoint-dir``): each running point keeps its state in DIR,
     saved every checkpoint_every seconds (600) and on Ctrl-C, and the next call resumes it to the
-    uninterrupted result bit for bit (.resumed, .saved count them).
+    uninterrupted result bit for bit (.resumed, .saved count them; each point's resumed_at is the
+    time it went on from, None for a fresh start).
     Raises ValueError for bad input (the CLI's message), StoreError, OSError (a state that cannot
     be written).
     """

@@ -79,8 +79,12 @@ def test_ctrl_c_saves_a_sweeps_running_points_and_the_same_call_resumes_them(tmp
     assert cut.saved == 2 and len(cut) == 0 and len(list(states.iterdir())) == 2
     again = granchain.sweep(db=db, checkpoint_dir=states, progress=False, **grid)
     assert again.resumed == 2 and again.saved == 0 and again.stored_now == 2
+    assert all(0 < r.resumed_at < 3020 for r in again)  # each point says where it went on from
+    assert all(r.resumed_at is None for r in whole)  # fresh starts
     for a, b in zip(again, whole):
         same_numbers(a, b)
+    back = granchain.sweep(db=db, checkpoint_dir=states, progress=False, **grid)
+    assert back.reused == 2 and all(r.reused and r.resumed_at is None for r in back)  # read back from the store
     assert list(states.iterdir()) == []  # each state removed once its point is stored
 
 
